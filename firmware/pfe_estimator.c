@@ -1,0 +1,169 @@
+/* pfe_estimator.c - the 10 ms fuel estimator (contract in pfe_estimator.h). */
+#include "pfe_estimator.h"
+
+#include <stddef.h>
+
+#include "pfe_fixed.h"
+
+#define TEN_PL_PER_UL 100000U
+
+int pfe_estimator_init(pfe_estimator_t *est, const pfe_platoon_t *platoon)
+{
+    if ((est == NULL) || (platoon == NULL)) {
+        return PFE_EINVAL;
+    }
+    est->platoon = platoon;
+    pfe_accel_reset(&est->filter);
+    est->ticks_since_sample = 0U;
+    est->trig_grade_ppm = 0;
+    pfe_grade_accel(0, platoon->gravity_um_s2, &est->trig);
+    est->fuel_used_10pl = 0U;
+    for (uint32_t i = 0U; i < PFE_MAX_VEHICLES; i++) {
+        est->pos_fuel_used_10pl[i] = 0U;
+        est->out.pos_fuel_rate_nl_s[i] = 0U;
+    }
+    est->out.flags = PFE_EST_SPEED_MISSING | PFE_EST_GRADE_MISSING;
+    est->out.speed_mm_s = 0;
+    est->out.accel_um_s2 = 0;
+    est->out.grade_ppm = 0;
+    est->out.wheel_force_n = 0;
+    est->out.fuel_rate_nl_s = 0U;
+    return PFE_OK;
+}
+
+static void clear_rates(pfe_estimator_t *est)
+{
+    est->out.wheel_force_n = 0;
+    est->out.fuel_rate_nl_s = 0U;
+    for (uint32_t i = 0U; i < PFE_MAX_VEHICLES; i++) {
+        est->out.pos_fuel_rate_nl_s[i] = 0U;
+    }
+}
+
+/* Feeds the speed filter; returns the flags it raises. */
+static uint32_t track_speed(pfe_estimator_t *est, const pfe_est_input_t *in)
+{
+    uint32_t flags = 0U;
+    if ((in->speed_mm_s < 0) || (in->speed_mm_s > PFE_SPEED_MAX_MM_S)) {
+        flags |= PFE_EST_SPEED_CLAMPED;
+    }
+    if (est->ticks_since_sample < UINT32_MAX) {
+        est->ticks_since_sample++;
+    }
+    if (in->speed_fresh) {
+        const uint32_t periods = (est->ticks_since_sample + (PFE_EST_TICKS_PER_SPEED_PERIOD / 2U)) /
+                                 PFE_EST_TICKS_PER_SPEED_PERIOD;
+        if (periods > PFE_EST_STALE_PERIODS) {
+            pfe_accel_reset(&est->filter); /* too long a gap to predict across */
+        }
+        pfe_accel_update(&est->filter, in->speed_mm_s, periods);
+        est->ticks_since_sample = 0U;
+    } else if (est->ticks_since_sample > (PFE_EST_STALE_PERIODS * PFE_EST_TICKS_PER_SPEED_PERIOD)) {
+        flags |= PFE_EST_SPEED_MISSING;
+    } else {
+        /* held between samples */
+    }
+    return flags;
+}
+
+static uint64_t accumulate(uint64_t total, uint32_t rate, uint32_t *flags)
+{
+    const uint64_t sum = pfe_sat_add_u64(total, rate);
+    if (sum == UINT64_MAX) {
+        *flags |= PFE_EST_SATURATED;
+    }
+    return sum;
+}
+
+const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_input_t *in)
+{
+    uint32_t flags = 0U;
+    if ((in == NULL) || !in->speed_valid) {
+        flags |= PFE_EST_SPEED_MISSING;
+    }
+    if ((in == NULL) || !in->grade_valid) {
+        flags |= PFE_EST_GRADE_MISSING;
+    }
+    if ((flags & PFE_EST_SPEED_MISSING) != 0U) {
+        pfe_accel_reset(&est->filter);
+        est->ticks_since_sample = 0U;
+    } else {
+        flags |= track_speed(est, in);
+    }
+    if ((flags & PFE_EST_SPEED_MISSING) == 0U) {
+        est->out.speed_mm_s = (est->filter.speed_um_s + 500) / 1000;
+        est->out.accel_um_s2 = est->filter.accel_um_s2;
+        if (est->filter.samples < PFE_EST_WARMUP_SAMPLES) {
+            flags |= PFE_EST_WARMING_UP;
+        }
+    }
+    if ((flags & PFE_EST_GRADE_MISSING) == 0U) {
+        if ((in->grade_ppm < -PFE_GRADE_MAX_PPM) || (in->grade_ppm > PFE_GRADE_MAX_PPM)) {
+            flags |= PFE_EST_GRADE_CLAMPED;
+        }
+        est->out.grade_ppm = pfe_clamp_i32(in->grade_ppm, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM);
+    }
+    if ((flags & (PFE_EST_SPEED_MISSING | PFE_EST_GRADE_MISSING | PFE_EST_WARMING_UP)) != 0U) {
+        clear_rates(est);
+        est->out.flags = flags;
+        return &est->out;
+    }
+
+    const pfe_platoon_t *pl = est->platoon;
+    const int32_t v = est->out.speed_mm_s;
+    const int32_t a = est->out.accel_um_s2;
+    const int32_t grade = est->out.grade_ppm;
+    if (grade != est->trig_grade_ppm) { /* SSI repeats its value often: reuse */
+        pfe_grade_accel(grade, pl->gravity_um_s2, &est->trig);
+        est->trig_grade_ppm = grade;
+    }
+
+    pfe_grade_accel_t small;
+    pfe_platoon_grade_accel(pl, grade, &small);
+    const int32_t force = pfe_vehicle_fuel_force_n(&pl->object, v, a, &small);
+    est->out.wheel_force_n = force;
+    est->out.fuel_rate_nl_s = pfe_fuel_rate_nl_s(force, v, pl->object.power_aux_w, pl->object.fuel_q20);
+    est->fuel_used_10pl = accumulate(est->fuel_used_10pl, est->out.fuel_rate_nl_s, &flags);
+
+    for (uint32_t i = 0U; i < pl->n_vehicles; i++) {
+        const pfe_vehicle_t *veh = &pl->position[i];
+        const int32_t f = pfe_vehicle_fuel_force_n(veh, v, a, &est->trig);
+        const uint32_t rate = pfe_fuel_rate_nl_s(f, v, veh->power_aux_w, veh->fuel_q20);
+        est->out.pos_fuel_rate_nl_s[i] = rate;
+        est->pos_fuel_used_10pl[i] = accumulate(est->pos_fuel_used_10pl[i], rate, &flags);
+        if (rate == UINT32_MAX) {
+            flags |= PFE_EST_SATURATED;
+        }
+    }
+    if (est->out.fuel_rate_nl_s == UINT32_MAX) {
+        flags |= PFE_EST_SATURATED;
+    }
+    est->out.flags = flags | PFE_EST_VALID;
+    return &est->out;
+}
+
+uint64_t pfe_estimator_fuel_used_ul(const pfe_estimator_t *est, int32_t position)
+{
+    if (position == PFE_EST_PLATOON) {
+        return est->fuel_used_10pl / TEN_PL_PER_UL;
+    }
+    if ((position < 0) || ((uint32_t)position >= est->platoon->n_vehicles)) {
+        return 0U;
+    }
+    return est->pos_fuel_used_10pl[position] / TEN_PL_PER_UL;
+}
+
+int pfe_estimator_set_fuel_used_ul(pfe_estimator_t *est, int32_t position, uint64_t fuel_ul)
+{
+    const uint64_t value = (fuel_ul > (UINT64_MAX / TEN_PL_PER_UL)) ? UINT64_MAX
+                                                                     : (fuel_ul * TEN_PL_PER_UL);
+    if (position == PFE_EST_PLATOON) {
+        est->fuel_used_10pl = value;
+        return PFE_OK;
+    }
+    if ((position < 0) || ((uint32_t)position >= est->platoon->n_vehicles)) {
+        return PFE_EINVAL;
+    }
+    est->pos_fuel_used_10pl[position] = value;
+    return PFE_OK;
+}

@@ -1,0 +1,59 @@
+/*
+ * pfe_fixed.h - saturating integer arithmetic shared by the model.
+ *
+ * The module has no floating point. Every quantity is an integer in a unit
+ * named in its identifier (speed_mm_s, force_n, ...) or a binary-scaled
+ * coefficient named with its shift (_q32: value * 2^32). These helpers are the
+ * only places where a wide result is narrowed, so that narrowing always
+ * saturates and never wraps.
+ *
+ * All functions are pure, reentrant, O(1) and use no memory beyond the stack.
+ */
+#ifndef PFE_FIXED_H
+#define PFE_FIXED_H
+
+#include <stdint.h>
+
+/* Error codes: functions that can fail return 0 or one of these (negative). */
+#define PFE_OK 0
+#define PFE_EINVAL (-22) /* an argument or calibration is out of its range */
+
+/* Clamps x to [INT32_MIN, INT32_MAX]. */
+int32_t pfe_sat_i32(int64_t x);
+
+/* Clamps x to [lo, hi]; requires lo <= hi. */
+int32_t pfe_clamp_i32(int32_t x, int32_t lo, int32_t hi);
+int64_t pfe_clamp_i64(int64_t x, int64_t lo, int64_t hi);
+
+/* a + b, saturated to [INT64_MIN, INT64_MAX]. */
+int64_t pfe_sat_add_i64(int64_t a, int64_t b);
+
+/* a + b for unsigned 64-bit, saturated at UINT64_MAX. */
+uint64_t pfe_sat_add_u64(uint64_t a, uint64_t b);
+
+/*
+ * x / 2^shift rounded to nearest (halves toward plus infinity),
+ * 1 <= shift <= 62, for |x| < 2^62 (every caller states its bound).
+ * These two run in every model step, so they are inline: a call would cost
+ * more than the arithmetic on the Cortex-M4. Right shift of a negative value
+ * is arithmetic on every compiler this project supports (GCC, Clang:
+ * documented implementation-defined behaviour); a unit test pins it.
+ */
+static inline int64_t pfe_rshift_round(int64_t x, uint32_t shift)
+{
+    return (x + ((int64_t)1 << (shift - 1U))) >> shift;
+}
+
+/* (a * b) / 2^shift rounded to nearest, for |a * b| < 2^62. */
+static inline int64_t pfe_mul_q(int64_t a, int32_t b, uint32_t shift)
+{
+    return pfe_rshift_round(a * (int64_t)b, shift);
+}
+
+/*
+ * num / den rounded to nearest, for num >= 0 and den > 0 (0 when den is 0).
+ * Uses a 64-bit division: meant for init-time scaling, not for the step.
+ */
+uint64_t pfe_udiv_round_u64(uint64_t num, uint64_t den);
+
+#endif /* PFE_FIXED_H */

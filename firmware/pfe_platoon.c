@@ -1,0 +1,120 @@
+/* pfe_platoon.c - the platoon object model (contract in pfe_platoon.h). */
+#include "pfe_platoon.h"
+
+#include <stddef.h>
+
+#include "pfe_fixed.h"
+
+#define POW5_6 15625U
+#define FORCE_NET_MAX_Q8 ((int64_t)1 << 35) /* 134 MN: above any platoon's weight */
+
+void pfe_platoon_config_uniform(pfe_platoon_config_t *cfg, uint32_t n_vehicles, uint32_t gap_mm,
+                                const pfe_vehicle_calib_t *vehicle, const pfe_env_calib_t *env,
+                                const pfe_drag_table_t *drag)
+{
+    uint32_t n = (n_vehicles < 1U) ? 1U : n_vehicles;
+    n = (n > PFE_MAX_VEHICLES) ? PFE_MAX_VEHICLES : n;
+    cfg->n_vehicles = n;
+    cfg->gap_mm = gap_mm;
+    for (uint32_t i = 0U; i < PFE_MAX_VEHICLES; i++) {
+        cfg->vehicle[i] = (i < n) ? vehicle : NULL;
+    }
+    cfg->env = env;
+    cfg->drag = drag;
+}
+
+/* Index of the vehicle with the smallest value_i / m_i (eq. 4.4), compared
+ * by cross-multiplication so that no ratio is rounded. */
+static uint32_t weakest(const pfe_platoon_config_t *cfg, int use_power)
+{
+    uint32_t best = 0U;
+    for (uint32_t i = 1U; i < cfg->n_vehicles; i++) {
+        const pfe_vehicle_calib_t *a = cfg->vehicle[i];
+        const pfe_vehicle_calib_t *b = cfg->vehicle[best];
+        const uint64_t va = use_power ? a->power_max_w : a->traction_max_n;
+        const uint64_t vb = use_power ? b->power_max_w : b->traction_max_n;
+        if ((va * b->mass_kg) < (vb * a->mass_kg)) {
+            best = i;
+        }
+    }
+    return best;
+}
+
+int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
+{
+    if ((pl == NULL) || (cfg == NULL) || (cfg->n_vehicles < 1U) ||
+        (cfg->n_vehicles > PFE_MAX_VEHICLES) || (pfe_calib_check_env(cfg->env) != PFE_OK) ||
+        (pfe_calib_check_drag(cfg->drag) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    const uint32_t n = cfg->n_vehicles;
+    uint64_t mass = 0U;
+    uint64_t eta_sum = 0U;
+    uint64_t brake = 0U;
+    uint64_t aux = 0U;
+    pfe_vehicle_t *obj = &pl->object;
+    obj->air_q32 = 0;
+    obj->mass_fuel_q32 = 0;
+    obj->roll_q32 = 0;
+    for (uint32_t i = 0U; i < n; i++) {
+        const pfe_vehicle_calib_t *c = cfg->vehicle[i];
+        const uint32_t phi = (c == NULL) ? 0U : pfe_drag_reduction_bp(cfg->drag, i, n, cfg->gap_mm);
+        if (pfe_vehicle_init(&pl->position[i], c, cfg->env, phi) != PFE_OK) {
+            return PFE_EINVAL;
+        }
+        /* Sums of per-vehicle coefficients (eq. 4.6, 4.8, 3.7): the per-vehicle
+         * bounds of pfe_vehicle.c times 32 stay below 2^36. */
+        obj->air_q32 += pl->position[i].air_q32;
+        obj->mass_fuel_q32 += pl->position[i].mass_fuel_q32;
+        obj->roll_q32 += pl->position[i].roll_q32;
+        mass += c->mass_kg;
+        eta_sum += c->eta_ppm;
+        brake += c->brake_max_n;
+        aux += c->power_aux_w;
+    }
+    for (uint32_t i = n; i < PFE_MAX_VEHICLES; i++) {
+        pl->position[i] = pl->position[0];
+        pl->position[i].power_aux_w = 0U;
+    }
+    const pfe_vehicle_calib_t *wp = cfg->vehicle[weakest(cfg, 1)];
+    const pfe_vehicle_calib_t *wt = cfg->vehicle[weakest(cfg, 0)];
+    pl->n_vehicles = n;
+    pl->gap_mm = cfg->gap_mm;
+    pl->mass_kg = (uint32_t)mass; /* <= 32 * 1e5 */
+    pl->gravity_um_s2 = cfg->env->gravity_um_s2;
+    pl->gravity_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)cfg->env->gravity_um_s2 << 26, POW5_6);
+    /* 1/M with 27 significant bits whatever M is (1 t to 3200 t). */
+    uint32_t shift = 16U;
+    while ((shift < 40U) && (((1000000ULL << (shift + 1U)) / mass) < (1ULL << 27))) {
+        shift++;
+    }
+    pl->inv_mass_shift = shift;
+    pl->inv_mass = (int64_t)pfe_udiv_round_u64(1000000ULL << shift, mass);
+    obj->mass_q32 = (int64_t)pfe_udiv_round_u64(mass << 26, POW5_6);
+    /* eq. 4.14 with eta_mean = eta_sum / n: 10^9 * 2^20 * n / (eta_sum * rho_d). */
+    obj->fuel_q20 = (int64_t)pfe_udiv_round_u64((1000000000ULL << 20) * n,
+                                                eta_sum * cfg->env->fuel_energy_j_ml);
+    /* eq. 4.4: (P_k / m_k) * M, rounded down; <= 2e6 * 32 fits 32 bits. */
+    obj->power_max_w = (uint32_t)(((uint64_t)wp->power_max_w * mass) / wp->mass_kg);
+    obj->traction_max_n = (uint32_t)(((uint64_t)wt->traction_max_n * mass) / wt->mass_kg);
+    obj->brake_max_n = (uint32_t)brake; /* eq. 4.5 */
+    obj->power_aux_w = (uint32_t)aux;
+    obj->reduction_bp = 0U;
+    return PFE_OK;
+}
+
+void pfe_platoon_grade_accel(const pfe_platoon_t *pl, int32_t grade_ppm, pfe_grade_accel_t *out)
+{
+    const int32_t grade = pfe_clamp_i32(grade_ppm, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM);
+    /* gravity_q32 < 2^36, |grade| < 2^19: product below 2^55. */
+    out->along_um_s2 = (int32_t)pfe_mul_q(pl->gravity_q32, grade, 32U);
+    out->normal_um_s2 = (int32_t)pl->gravity_um_s2;
+}
+
+int32_t pfe_platoon_accel_um_s2(const pfe_platoon_t *pl, int64_t net_force_q8)
+{
+    const int64_t f = pfe_clamp_i64(net_force_q8, -FORCE_NET_MAX_Q8, FORCE_NET_MAX_Q8);
+    /* inv_mass < 2^27, |f| <= 2^35: below 2^62. */
+    const int64_t a = pfe_rshift_round(pl->inv_mass * f, pl->inv_mass_shift + 8U);
+    return (int32_t)pfe_clamp_i64(a, -PFE_ACCEL_MAX_UM_S2, PFE_ACCEL_MAX_UM_S2);
+}

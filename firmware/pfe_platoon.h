@@ -1,0 +1,76 @@
+/*
+ * pfe_platoon.h - the platoon object model (thesis chapter 4).
+ *
+ * N trucks driven as one point mass. pfe_platoon_init() computes the
+ * aggregates once from a per-vehicle configuration, so a step costs the same
+ * as one truck whatever N is:
+ *
+ *   M                 eq. 4.3   sum of m_i (and M + sum mj_i for eq. 3.7)
+ *   Pmax_platoon      eq. 4.4   min_i(Pmax_i / m_i) * M (traction likewise)
+ *   Fb_max_platoon    eq. 4.5   sum of Fb_max_i (= N Fb_max for equal trucks)
+ *   air drag          eq. 4.6   1/2 rho v^2 sum cw_i Af_i (1 - phi_i(d)/100)
+ *   rolling           eq. 4.8   cr M g (cos alpha ~ 1; cr may differ per truck)
+ *   grade             eq. 4.10  M g alpha_p (sin alpha ~ alpha ~ grade)
+ *   fuel              eq. 4.14  delta (P + sum Paux_i) / (eta_mean rho_d)
+ *
+ * The aggregate is stored as a pfe_vehicle_t so that the chapter 3 force and
+ * fuel functions serve both models. The same init also builds each position's
+ * own chapter 3 coefficients (with that position's phi_i), which the
+ * estimator uses for per-truck fuel.
+ *
+ * Memory: sizeof(pfe_platoon_t) is about 64 * (PFE_MAX_VEHICLES + 1) bytes.
+ */
+#ifndef PFE_PLATOON_H
+#define PFE_PLATOON_H
+
+#include <stdint.h>
+
+#include "pfe_calib.h"
+#include "pfe_vehicle.h"
+
+typedef struct {
+    uint32_t n_vehicles;                                /* 1 .. PFE_MAX_VEHICLES */
+    uint32_t gap_mm;                                    /* d, the same between every pair (eq. 4.7) */
+    const pfe_vehicle_calib_t *vehicle[PFE_MAX_VEHICLES]; /* position 0 = lead; entries may share */
+    const pfe_env_calib_t *env;
+    const pfe_drag_table_t *drag;
+} pfe_platoon_config_t;
+
+typedef struct {
+    uint32_t n_vehicles;
+    uint32_t gap_mm;
+    uint32_t mass_kg;                            /* M */
+    uint32_t gravity_um_s2;                      /* g */
+    int64_t gravity_q32;                         /* g * 2^32 / 10^6, for g * grade */
+    int64_t inv_mass;                            /* 10^6 * 2^inv_mass_shift / M: um/s^2 per N */
+    uint32_t inv_mass_shift;                     /* chosen so that inv_mass is in [2^26, 2^27) */
+    pfe_vehicle_t object;                        /* the platoon as one point mass */
+    pfe_vehicle_t position[PFE_MAX_VEHICLES];    /* each truck at its position */
+} pfe_platoon_t;
+
+/*
+ * Fills a configuration of n identical vehicles with the defaults of
+ * pfe_calib.h and the given gap. n is clamped to [1, PFE_MAX_VEHICLES].
+ */
+void pfe_platoon_config_uniform(pfe_platoon_config_t *cfg, uint32_t n_vehicles, uint32_t gap_mm,
+                                const pfe_vehicle_calib_t *vehicle, const pfe_env_calib_t *env,
+                                const pfe_drag_table_t *drag);
+
+/*
+ * Builds the aggregates. Returns PFE_OK, or PFE_EINVAL for a NULL argument,
+ * n_vehicles outside [1, PFE_MAX_VEHICLES], a NULL vehicle entry, or any
+ * calibration that fails its check. On error *pl is unspecified.
+ * Uses 64-bit divisions: configuration time only.
+ */
+int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg);
+
+/* Small-angle gravity of the object model (eq. 4.8, 4.10): along = g * grade,
+ * normal = g. grade_ppm is clamped to +-PFE_GRADE_MAX_PPM. */
+void pfe_platoon_grade_accel(const pfe_platoon_t *pl, int32_t grade_ppm, pfe_grade_accel_t *out);
+
+/* Platoon acceleration for a net force in N * 2^8, eq. 4.3: a = F / M in
+ * um/s^2, rounded, clamped to +-PFE_ACCEL_MAX_UM_S2 (the force is clamped to
+ * +-2^35, i.e. 134 MN, first). 1/M carries 27 significant bits. */
+int32_t pfe_platoon_accel_um_s2(const pfe_platoon_t *pl, int64_t net_force_q8);
+
+#endif /* PFE_PLATOON_H */

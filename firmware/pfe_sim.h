@@ -1,0 +1,92 @@
+/*
+ * pfe_sim.h - the platoon object model driven over a road (thesis 5.2).
+ *
+ * The platoon (one point mass, eq. 4.3) under the PI cruise control runs
+ * over a road profile in fixed distance steps: this is what the module uses
+ * to predict fuel over the road ahead, and what the host simulator compares
+ * with the double-precision reference.
+ *
+ * Discretisation (explicit Euler in distance; the reference uses the same):
+ *   dt      = ds / v                         (v at the start of the step)
+ *   grade   = road sample holding at the step's midpoint (zero-order hold)
+ *   Fw      = PI(v_set - v), within [-Fb_max, min(Pmax / v, traction)]
+ *   a       = (Fw - Fa(v) - Fr - Fg) / M     eq. 4.3
+ *   v      += a dt
+ *   fuel   += delta (Fw' ds + Paux dt) / (eta rho_d), Fw' = (M + Mj) a +
+ *             Fa + Fr + Fg (eq. 3.7, 4.14: work Fw' v dt = Fw' ds)
+ * A step in distance rather than time keeps the cost of a route to its
+ * length / ds steps whatever the speed (1200 steps for 12 km at 10 m).
+ *
+ * Units: position mm (uint32: routes up to 4294 km), speed um/s internally
+ * and mm/s at the interface, time s * 2^16, fuel nL (uint64), force N.
+ * The distance step is PFE_SIM_STEP_MIN_MM .. PFE_SIM_STEP_MAX_MM; below
+ * PFE_SIM_STALL_MM_S the platoon is considered stalled (it cannot climb the
+ * grade) and the simulation stops with PFE_ESTALL.
+ */
+#ifndef PFE_SIM_H
+#define PFE_SIM_H
+
+#include <stdint.h>
+
+#include "pfe_calib.h"
+#include "pfe_pi.h"
+#include "pfe_platoon.h"
+
+#define PFE_SIM_STEP_MIN_MM 100U
+#define PFE_SIM_STEP_MAX_MM 10000U
+#define PFE_SIM_STALL_MM_S 1000 /* 3.6 km/h */
+
+/* Return codes of pfe_sim_step(). */
+#define PFE_SIM_DONE 0        /* the end of the road was reached before this call */
+#define PFE_SIM_RUNNING 1     /* one step was taken */
+#define PFE_ESTALL (-11)      /* speed fell below PFE_SIM_STALL_MM_S */
+
+/* A road profile: grade_ppm[k] holds on [k * spacing, (k + 1) * spacing). */
+typedef struct {
+    const int32_t *grade_ppm;
+    uint32_t n_samples;
+    uint32_t spacing_mm;
+} pfe_road_t;
+
+typedef struct {
+    const pfe_platoon_t *platoon;
+    pfe_pi_t pi;
+    uint32_t step_mm;
+    uint32_t end_mm;
+    int32_t set_speed_um_s;
+    /* State after the last step. */
+    int32_t speed_um_s;
+    uint32_t position_mm;
+    uint32_t steps;
+    uint64_t time_q16;       /* s * 2^16 */
+    uint64_t fuel_nl;        /* platoon total, eq. 4.14 */
+    /* What the last step used and produced. */
+    int32_t grade_ppm;
+    int32_t wheel_force_n;   /* controller output */
+    int32_t accel_um_s2;
+    uint64_t fuel_step_nl;
+} pfe_sim_t;
+
+/*
+ * Starts a run at position 0 with speed initial_speed_mm_s and the
+ * controller's integrator preset to the force that holds that speed on the
+ * first grade sample (a start at equilibrium). The platoon and road must
+ * outlive the run. Returns PFE_OK or PFE_EINVAL (NULL argument, empty road,
+ * spacing 0, road longer than 4294 km, step out of range, speeds outside
+ * [PFE_SIM_STALL_MM_S, PFE_SPEED_MAX_MM_S], cruise calibration invalid).
+ */
+int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_calib_t *cruise,
+                 const pfe_road_t *road, int32_t set_speed_mm_s, int32_t initial_speed_mm_s,
+                 uint32_t step_mm);
+
+/*
+ * One distance step (the last one is shortened to end exactly at the end of
+ * the road). Returns PFE_SIM_RUNNING, PFE_SIM_DONE, or PFE_ESTALL. Cost: a
+ * fixed number of operations (two 32-bit divisions), no loop.
+ */
+int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road);
+
+/* Speed in mm/s, rounded. */
+int32_t pfe_sim_speed_mm_s(const pfe_sim_t *sim);
+
+#endif /* PFE_SIM_H */

@@ -1,0 +1,134 @@
+/* pfe_vehicle.c - one truck: forces and fuel (contract in pfe_vehicle.h). */
+#include "pfe_vehicle.h"
+
+#include <stddef.h>
+
+#include "pfe_fixed.h"
+
+/* 10^6 = 2^6 * 15625; 10^12 = 2^12 * 244140625; 2 * 10^19 = 2^20 * 5^19. */
+#define POW5_6 15625U
+#define POW5_12 244140625ULL
+#define POW5_19 19073486328125ULL
+
+int pfe_vehicle_init(pfe_vehicle_t *veh, const pfe_vehicle_calib_t *calib,
+                     const pfe_env_calib_t *env, uint32_t reduction_bp)
+{
+    if ((veh == NULL) || (pfe_calib_check_vehicle(calib) != PFE_OK) ||
+        (pfe_calib_check_env(env) != PFE_OK) || (reduction_bp > 10000U)) {
+        return PFE_EINVAL;
+    }
+    /* rho [g/m^3] * A [mm^2] * (1 - phi) [1e-4] <= 2000 * 2e7 * 1e4 = 4e14;
+     * k [N/(mm/s)^2] = that / (2 * 10^19); times 2^32 = that * 2^12 / 5^19. */
+    const uint64_t rho_a = (uint64_t)env->air_density_g_m3 * (uint64_t)calib->drag_area_mm2 *
+                           (uint64_t)(10000U - reduction_bp);
+    veh->air_q32 = (int64_t)pfe_udiv_round_u64(rho_a << 12, POW5_19);
+    /* kg * 2^32 / 10^6 = kg * 2^26 / 5^6 = kg * 4295; m + mj <= 2e5 kg keeps it below 2^30. */
+    veh->mass_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)calib->mass_kg << 26, POW5_6);
+    veh->mass_fuel_q32 = (int64_t)pfe_udiv_round_u64(
+        ((uint64_t)calib->mass_kg + (uint64_t)calib->rot_mass_kg) << 26, POW5_6);
+    /* cr [ppm] * m [kg] <= 1e10; * 2^32 / 10^12 = * 2^20 / 5^12. */
+    veh->roll_q32 = (int64_t)pfe_udiv_round_u64(
+        ((uint64_t)calib->roll_coef_ppm * (uint64_t)calib->mass_kg) << 20, POW5_12);
+    /* nL per mJ = 10^3 / (eta rho_d) = 10^9 / (eta_ppm * rho_d); times 2^20. */
+    veh->fuel_q20 = (int64_t)pfe_udiv_round_u64(
+        1000000000ULL << 20, (uint64_t)calib->eta_ppm * (uint64_t)env->fuel_energy_j_ml);
+    veh->power_max_w = calib->power_max_w;
+    veh->traction_max_n = calib->traction_max_n;
+    veh->brake_max_n = calib->brake_max_n;
+    veh->power_aux_w = calib->power_aux_w;
+    veh->reduction_bp = reduction_bp;
+    return PFE_OK;
+}
+
+void pfe_grade_accel(int32_t grade_ppm, uint32_t gravity_um_s2, pfe_grade_accel_t *out)
+{
+    const int64_t one_q30 = (int64_t)1 << 30;
+    const int32_t grade = pfe_clamp_i32(grade_ppm, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM);
+    /* grade * 2^30 / 10^6 = grade * round(2^50 / 10^6) / 2^20; |grade| <= 5e5
+     * keeps the product below 2^50 and the result below 2^29.1. */
+    const int64_t g_q30 = pfe_rshift_round((int64_t)grade * 1125899907LL, 20U);
+    const int64_t x = pfe_rshift_round(g_q30 * g_q30, 30U);      /* grade^2 <= 0.25 */
+    const int64_t s = one_q30 + x;                               /* 1 + grade^2 */
+    /* 1/sqrt(1 + x) ~ 1 - x/2 + 3x^2/8 (error <= 5e-3 at x = 0.25), then two
+     * Newton steps y <- y (3 - s y^2) / 2, each squaring the relative error. */
+    int64_t y = one_q30 - (x / 2) + pfe_rshift_round(3 * x * x, 33U);
+    for (uint32_t k = 0U; k < 2U; k++) {
+        const int64_t y2 = pfe_rshift_round(y * y, 30U);
+        const int64_t sy2 = pfe_rshift_round(s * y2, 30U);
+        /* y <= 2^30 and 3 - s y^2 < 2^32: product below 2^62. */
+        y = pfe_rshift_round(y * ((3 * one_q30) - sy2), 31U);
+    }
+    const int64_t sin_q30 = pfe_rshift_round(g_q30 * y, 30U);
+    /* g < 2^24 and |sin|, cos <= 2^30: products below 2^54. */
+    out->normal_um_s2 = (int32_t)pfe_rshift_round((int64_t)gravity_um_s2 * y, 30U);
+    out->along_um_s2 = (int32_t)pfe_rshift_round((int64_t)gravity_um_s2 * sin_q30, 30U);
+}
+
+int32_t pfe_vehicle_air_n(const pfe_vehicle_t *veh, int32_t speed_mm_s)
+{
+    /* air_q32 < 2^17 per vehicle, < 2^22 for a platoon; v <= 70000 < 2^17:
+     * product below 2^56. */
+    return pfe_sat_i32(pfe_mul_q(veh->air_q32 * (int64_t)speed_mm_s, speed_mm_s, 32U));
+}
+
+/* Fa + Fr + Fg in N * 2^32, one sum so that the result is rounded once.
+ * air: < 2^56; roll_q32 < 2^26, mass_q32 < 2^30 per vehicle (2^31, 2^35 for
+ * a platoon of PFE_MAX_VEHICLES) times |accel| < 2^25: the sum stays below 2^61. */
+static int64_t resistance_q32(const pfe_vehicle_t *veh, int32_t speed_mm_s,
+                              const pfe_grade_accel_t *grade)
+{
+    return (veh->air_q32 * (int64_t)speed_mm_s * (int64_t)speed_mm_s) +
+           (veh->roll_q32 * (int64_t)grade->normal_um_s2) +
+           (veh->mass_q32 * (int64_t)grade->along_um_s2);
+}
+
+int32_t pfe_vehicle_resistance_n(const pfe_vehicle_t *veh, int32_t speed_mm_s,
+                                 const pfe_grade_accel_t *grade)
+{
+    return pfe_sat_i32(pfe_rshift_round(resistance_q32(veh, speed_mm_s, grade), 32U));
+}
+
+int64_t pfe_vehicle_resistance_q8(const pfe_vehicle_t *veh, int32_t speed_mm_s,
+                                  const pfe_grade_accel_t *grade)
+{
+    return pfe_rshift_round(resistance_q32(veh, speed_mm_s, grade), 24U);
+}
+
+int32_t pfe_vehicle_fuel_force_n(const pfe_vehicle_t *veh, int32_t speed_mm_s,
+                                 int32_t accel_um_s2, const pfe_grade_accel_t *grade)
+{
+    const int32_t a = pfe_clamp_i32(accel_um_s2, -PFE_ACCEL_MAX_UM_S2, PFE_ACCEL_MAX_UM_S2);
+    const int64_t inertia = pfe_mul_q(veh->mass_fuel_q32, a, 32U);
+    return pfe_sat_i32(inertia + (int64_t)pfe_vehicle_resistance_n(veh, speed_mm_s, grade));
+}
+
+int32_t pfe_wheel_force_max_n(uint32_t power_max_w, uint32_t traction_max_n, int32_t speed_mm_s)
+{
+    const uint32_t cap = (traction_max_n > (uint32_t)INT32_MAX) ? (uint32_t)INT32_MAX
+                                                                 : traction_max_n;
+    if (speed_mm_s <= 0) {
+        return (int32_t)cap;
+    }
+    /* P [W] * 1000 / v [mm/s], split so every operand stays in 32 bits:
+     * q kN exactly, then the remainder (< v <= 70000) times 1000. */
+    const uint32_t v = (uint32_t)speed_mm_s;
+    const uint32_t q = power_max_w / v;
+    const uint32_t r = power_max_w % v;
+    const uint64_t force = ((uint64_t)q * 1000U) + (uint64_t)((r * 1000U) / v);
+    return (force < (uint64_t)cap) ? (int32_t)force : (int32_t)cap;
+}
+
+uint32_t pfe_fuel_rate_nl_s(int32_t force_n, int32_t speed_mm_s, uint32_t power_aux_w,
+                            int64_t fuel_q20)
+{
+    if (force_n <= 0) {
+        return 0U; /* eq. 3.9: fuel cut */
+    }
+    /* N * mm/s = mW; <= 2^31 * 2^17 = 2^48, so add Paux and clamp to 2^40 mW
+     * (1.1 GW) before scaling: with fuel_q20 < 2^22 the product stays below 2^62. */
+    const int64_t power_mw = ((int64_t)force_n * (int64_t)speed_mm_s) +
+                             ((int64_t)power_aux_w * 1000);
+    const int64_t p = pfe_clamp_i64(power_mw, 0, (int64_t)1 << 40);
+    const int64_t rate = pfe_rshift_round(p * fuel_q20, 20U);
+    return (rate > (int64_t)UINT32_MAX) ? UINT32_MAX : (uint32_t)rate;
+}

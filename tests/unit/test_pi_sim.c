@@ -1,0 +1,219 @@
+/* Unit tests: PI controller (pfe_pi) and the object model over a road (pfe_sim).
+ * Roads are built here; expected values are hand-computed. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "pfe_calib.h"
+#include "pfe_fixed.h"
+#include "pfe_pi.h"
+#include "pfe_platoon.h"
+#include "pfe_sim.h"
+
+#define ONE_Q32 ((int64_t)1 << 32)
+#define ONE_S_Q16 65536U
+#define ROAD_SAMPLES 1000U
+
+static int32_t road_buf[ROAD_SAMPLES];
+
+/* 12 km at 12 m, like the thesis's roads, of one constant grade. */
+static pfe_road_t constant_road(int32_t grade_ppm)
+{
+    for (uint32_t k = 0U; k < ROAD_SAMPLES; k++) {
+        road_buf[k] = grade_ppm;
+    }
+    const pfe_road_t r = {road_buf, ROAD_SAMPLES, 12000U};
+    return r;
+}
+
+static pfe_platoon_t platoon_of(uint32_t n, const pfe_drag_table_t *drag)
+{
+    pfe_platoon_config_t cfg;
+    pfe_platoon_config_uniform(&cfg, n, 10000U, &pfe_default_vehicle, &pfe_default_env, drag);
+    pfe_platoon_t pl;
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    return pl;
+}
+
+static void test_pi_proportional_and_integral(void **state)
+{
+    (void)state;
+    pfe_pi_t pi;
+    pfe_pi_init(&pi, ONE_Q32, 0, 7);
+    assert_int_equal(pfe_pi_step(&pi, 100, ONE_S_Q16, -1000, 1000), 107);
+    pfe_pi_init(&pi, 0, ONE_Q32, 0);
+    assert_int_equal(pfe_pi_step(&pi, 10, ONE_S_Q16, -1000, 1000), 10);
+    assert_int_equal(pfe_pi_step(&pi, 10, ONE_S_Q16, -1000, 1000), 20);
+    assert_int_equal(pfe_pi_step(&pi, 10, ONE_S_Q16 / 2U, -1000, 1000), 25);
+    assert_int_equal(pfe_pi_step(&pi, -40, ONE_S_Q16, -1000, 1000), -15);
+}
+
+static void test_pi_saturates_without_windup(void **state)
+{
+    (void)state;
+    pfe_pi_t pi;
+    pfe_pi_init(&pi, 0, ONE_Q32, 0);
+    for (int k = 0; k < 20; k++) {
+        (void)pfe_pi_step(&pi, 10, ONE_S_Q16, -50, 50);
+    }
+    assert_int_equal(pfe_pi_step(&pi, 10, ONE_S_Q16, -50, 50), 50);
+    /* 20 s of error 10 would be 210 without anti-windup: it leaves at once. */
+    assert_int_equal(pfe_pi_step(&pi, -10, ONE_S_Q16, -50, 50), 40);
+
+    /* Conditional integration: the P part alone saturates, I must not grow. */
+    pfe_pi_init(&pi, ONE_Q32, ONE_Q32, 0);
+    assert_int_equal(pfe_pi_step(&pi, 60, ONE_S_Q16, -50, 50), 50);
+    assert_int_equal(pfe_pi_step(&pi, -5, ONE_S_Q16, -50, 50), -10);
+
+    /* A limit that moves pulls the integrator along (Pmax / v falls). */
+    pfe_pi_init(&pi, 0, ONE_Q32, 45);
+    assert_int_equal(pfe_pi_step(&pi, 0, ONE_S_Q16, -50, 20), 20);
+    assert_int_equal(pfe_pi_step(&pi, 0, ONE_S_Q16, -50, 50), 20);
+    /* Reversed limits: the upper one wins. */
+    assert_int_equal(pfe_pi_step(&pi, 0, ONE_S_Q16, 30, 10), 10);
+}
+
+static void test_flat_road_needs_129_kw(void **state)
+{
+    (void)state;
+    const pfe_platoon_t pl = platoon_of(1U, &pfe_default_drag);
+    const pfe_road_t road = constant_road(0);
+    pfe_sim_t sim;
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 10000U), PFE_OK);
+    int rc;
+    while ((rc = pfe_sim_step(&sim, &road)) == PFE_SIM_RUNNING) {
+    }
+    assert_int_equal(rc, PFE_SIM_DONE);
+    assert_int_equal(sim.steps, 1200);
+    assert_int_equal(sim.position_mm, 12000000);
+    assert_in_range(pfe_sim_speed_mm_s(&sim), 24999, 25001);
+    /* 129.14 kW +- 2 % at the wheels */
+    const int64_t p_w = ((int64_t)sim.wheel_force_n * pfe_sim_speed_mm_s(&sim)) / 1000;
+    assert_in_range(p_w, 126558, 131721);
+    /* 12 km at 25 m/s = 480 s; fuel 480 s * 9.298 mL/s = 4.463 L */
+    assert_in_range(sim.time_q16, 480U * 65536U - 65536U, 480U * 65536U + 65536U);
+    assert_in_range(sim.fuel_nl, 4463000000U - 5000000U, 4463000000U + 5000000U);
+}
+
+static void test_two_percent_upgrade_settles_at_73_7_kmh(void **state)
+{
+    (void)state;
+    const pfe_platoon_t pl = platoon_of(1U, &pfe_default_drag);
+    const pfe_road_t road = constant_road(20000);
+    pfe_sim_t sim;
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 10000U), PFE_OK);
+    while (pfe_sim_step(&sim, &road) == PFE_SIM_RUNNING) {
+    }
+    /* 250 kW / v = 3.87 v^2 + 2746.8 + 7848 N at v = 20.466 m/s = 73.68 km/h;
+     * 73.7 +- 0.5 km/h is 20333 .. 20611 mm/s. */
+    assert_in_range(pfe_sim_speed_mm_s(&sim), 20333, 20611);
+    /* At full power: Pmax / v (v of the step start, within a mm/s of the end). */
+    const int32_t f_max = pfe_wheel_force_max_n(250000U, 100000U, pfe_sim_speed_mm_s(&sim));
+    assert_in_range(sim.wheel_force_n, f_max - 2, f_max + 2);
+}
+
+static void test_no_fuel_while_coasting_downhill(void **state)
+{
+    (void)state;
+    const pfe_platoon_t pl = platoon_of(5U, &pfe_default_drag);
+    const pfe_road_t road = constant_road(-60000);
+    pfe_sim_t sim;
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 10000U), PFE_OK);
+    while (pfe_sim_step(&sim, &road) == PFE_SIM_RUNNING) {
+        assert_true(sim.fuel_step_nl == 0U);
+        assert_true(sim.wheel_force_n < 0);
+    }
+    assert_true(sim.fuel_nl == 0U);
+    assert_in_range(pfe_sim_speed_mm_s(&sim), 24900, 25100);
+}
+
+static uint64_t hilly_fuel(uint32_t n)
+{
+    /* 2 km blocks: 0, +3 %, -2 %, +1 %, -4 %, +2 % */
+    static const int32_t block[6] = {0, 30000, -20000, 10000, -40000, 20000};
+    for (uint32_t k = 0U; k < ROAD_SAMPLES; k++) {
+        road_buf[k] = block[(k * 12U) / 2000U];
+    }
+    const pfe_road_t road = {road_buf, ROAD_SAMPLES, 12000U};
+    const pfe_platoon_t pl = platoon_of(n, &pfe_no_drag_reduction);
+    pfe_sim_t sim;
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 10000U), PFE_OK);
+    while (pfe_sim_step(&sim, &road) == PFE_SIM_RUNNING) {
+    }
+    assert_int_equal(sim.position_mm, 12000000);
+    return sim.fuel_nl;
+}
+
+static void test_n_identical_trucks_without_slipstream_burn_n_times_one(void **state)
+{
+    (void)state;
+    const uint64_t one = hilly_fuel(1U);
+    const uint64_t five = hilly_fuel(5U);
+    assert_true(one > 1000000000U); /* more than 1 L */
+    /* Identical up to rounding: the force and step computations see speed in
+     * whole mm/s (2.4e-5 of 21 m/s at most), so within 3e-5 of 5 x one truck. */
+    const uint64_t expect = 5U * one;
+    const uint64_t diff = (five > expect) ? (five - expect) : (expect - five);
+    assert_true(diff <= (expect * 3U) / 100000U);
+}
+
+static void test_too_steep_stalls_with_error(void **state)
+{
+    (void)state;
+    const pfe_platoon_t pl = platoon_of(1U, &pfe_default_drag);
+    const pfe_road_t road = constant_road(300000); /* 117.7 kN of grade > 100 kN traction */
+    pfe_sim_t sim;
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 10000U), PFE_OK);
+    int rc;
+    while ((rc = pfe_sim_step(&sim, &road)) == PFE_SIM_RUNNING) {
+    }
+    assert_int_equal(rc, PFE_ESTALL);
+    assert_true(sim.position_mm < 12000000U);
+    assert_int_equal(pfe_sim_step(&sim, &road), PFE_ESTALL);
+}
+
+static void test_sim_arguments_and_last_short_step(void **state)
+{
+    (void)state;
+    const pfe_platoon_t pl = platoon_of(1U, &pfe_default_drag);
+    static const int32_t short_grades[3] = {0, 0, 0};
+    const pfe_road_t road = {short_grades, 3U, 7000U}; /* 21 m */
+    pfe_sim_t sim;
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 10000U), PFE_OK);
+    assert_int_equal(pfe_sim_step(&sim, &road), PFE_SIM_RUNNING);
+    assert_int_equal(pfe_sim_step(&sim, &road), PFE_SIM_RUNNING);
+    assert_int_equal(pfe_sim_step(&sim, &road), PFE_SIM_RUNNING);
+    assert_int_equal(sim.position_mm, 21000);
+    assert_int_equal(pfe_sim_step(&sim, &road), PFE_SIM_DONE);
+    assert_int_equal(sim.steps, 3);
+
+    const pfe_road_t empty = {short_grades, 0U, 7000U};
+    const pfe_road_t no_spacing = {short_grades, 3U, 0U};
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &empty, 25000, 25000, 10000U), PFE_EINVAL);
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &no_spacing, 25000, 25000, 10000U), PFE_EINVAL);
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 10001U), PFE_EINVAL);
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 99U), PFE_EINVAL);
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 999, 25000, 10000U), PFE_EINVAL);
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 70001, 10000U), PFE_EINVAL);
+    assert_int_equal(pfe_sim_init(&sim, NULL, &pfe_default_cruise, &road, 25000, 25000, 10000U), PFE_EINVAL);
+    assert_int_equal(pfe_sim_init(&sim, &pl, NULL, &road, 25000, 25000, 10000U), PFE_EINVAL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pi_proportional_and_integral),
+        cmocka_unit_test(test_pi_saturates_without_windup),
+        cmocka_unit_test(test_flat_road_needs_129_kw),
+        cmocka_unit_test(test_two_percent_upgrade_settles_at_73_7_kmh),
+        cmocka_unit_test(test_no_fuel_while_coasting_downhill),
+        cmocka_unit_test(test_n_identical_trucks_without_slipstream_burn_n_times_one),
+        cmocka_unit_test(test_too_steep_stalls_with_error),
+        cmocka_unit_test(test_sim_arguments_and_last_short_step),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

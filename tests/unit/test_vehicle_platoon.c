@@ -1,0 +1,191 @@
+/* Unit tests: chapter 3 vehicle (pfe_vehicle) and chapter 4 aggregates (pfe_platoon).
+ * Expected values are hand-computed from REFERENCE.md section 2 defaults. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "pfe_calib.h"
+#include "pfe_fixed.h"
+#include "pfe_platoon.h"
+#include "pfe_vehicle.h"
+
+static pfe_vehicle_t truck(uint32_t reduction_bp)
+{
+    pfe_vehicle_t v;
+    memset(&v, 0xA5, sizeof v);
+    assert_int_equal(pfe_vehicle_init(&v, &pfe_default_vehicle, &pfe_default_env, reduction_bp), PFE_OK);
+    return v;
+}
+
+static void test_one_truck_flat_90_kmh_needs_129_kw(void **state)
+{
+    (void)state;
+    const pfe_vehicle_t v = truck(0U);
+    pfe_grade_accel_t g;
+    pfe_grade_accel(0, pfe_default_env.gravity_um_s2, &g);
+    /* Fa = 0.5 * 1.29 * 0.6 * 10 * 25^2 = 2418.75 N; Fr = 0.007 * 40000 * 9.81 = 2746.8 N */
+    assert_int_equal(pfe_vehicle_air_n(&v, 25000), 2419);
+    const int32_t f = pfe_vehicle_resistance_n(&v, 25000, &g);
+    assert_int_equal(f, 5166);
+    /* P = 5165.55 N * 25 m/s = 129.14 kW; the bound is 129 kW +- 2 %. */
+    const int64_t p_w = ((int64_t)f * 25000) / 1000;
+    assert_in_range(p_w, 126420, 131580);
+    assert_in_range(p_w, 129138 - 15, 129138 + 15);
+}
+
+static void test_grade_split_is_exact_trigonometry(void **state)
+{
+    (void)state;
+    pfe_grade_accel_t g;
+    /* 9.81 sin(atan G), 9.81 cos(atan G) in um/s^2, from a calculator. */
+    pfe_grade_accel(20000, 9810000U, &g);
+    assert_in_range(g.along_um_s2, 196161 - 1, 196161 + 1);
+    assert_in_range(g.normal_um_s2, 9808039 - 1, 9808039 + 1);
+    pfe_grade_accel(300000, 9810000U, &g);
+    assert_in_range(g.along_um_s2, 2818883 - 1, 2818883 + 1);
+    assert_in_range(g.normal_um_s2, 9396276 - 1, 9396276 + 1);
+    pfe_grade_accel(-60000, 9810000U, &g);
+    assert_in_range(g.along_um_s2, -587543 - 1, -587543 + 1);
+    assert_in_range(g.normal_um_s2, 9792390 - 1, 9792390 + 1);
+    /* Clamped at 50 %. */
+    pfe_grade_accel(900000, 9810000U, &g);
+    assert_in_range(g.along_um_s2, 4387165 - 1, 4387165 + 1);
+    assert_in_range(g.normal_um_s2, 8774331 - 1, 8774331 + 1);
+}
+
+static void test_force_limits(void **state)
+{
+    (void)state;
+    /* 250 kW / 25 m/s = 10 kN; at 1 m/s Pmax / v = 250 kN is above traction. */
+    assert_int_equal(pfe_wheel_force_max_n(250000U, 100000U, 25000), 10000);
+    assert_int_equal(pfe_wheel_force_max_n(250000U, 100000U, 1000), 100000);
+    assert_int_equal(pfe_wheel_force_max_n(250000U, 100000U, 0), 100000);
+    assert_int_equal(pfe_wheel_force_max_n(250000U, 100000U, -5), 100000);
+    /* 250000 / 7 = 35714.28 N, rounded down. */
+    assert_int_equal(pfe_wheel_force_max_n(250U, 100000U, 7), 35714);
+}
+
+static void test_fuel_rate_and_fuel_cut(void **state)
+{
+    (void)state;
+    const pfe_vehicle_t v = truck(0U);
+    /* (5166 N * 25 m/s + 4 kW) / (0.40 * 35800 J/mL) = 9.298184 mL/s; the
+     * coefficient 1 / (eta rho_d) has 2^-20 nL/mJ steps: 1e-5 relative here. */
+    assert_in_range(pfe_fuel_rate_nl_s(5166, 25000, 4000U, v.fuel_q20), 9298184 - 93, 9298184 + 93);
+    /* eq. 3.9: no fuel, not even for Paux, when Fw <= 0. */
+    assert_int_equal(pfe_fuel_rate_nl_s(0, 25000, 4000U, v.fuel_q20), 0);
+    assert_int_equal(pfe_fuel_rate_nl_s(-30000, 25000, 4000U, v.fuel_q20), 0);
+    /* Saturates instead of wrapping. */
+    assert_true(pfe_fuel_rate_nl_s(INT32_MAX, 70000, 100000U, v.fuel_q20) == UINT32_MAX);
+}
+
+static void test_fuel_force_includes_rotating_mass(void **state)
+{
+    (void)state;
+    const pfe_vehicle_t v = truck(0U);
+    pfe_grade_accel_t g;
+    pfe_grade_accel(0, 9810000U, &g);
+    /* (40000 + 1200) kg * 0.5 m/s^2 = 20600 N on top of 5166 N. */
+    assert_int_equal(pfe_vehicle_fuel_force_n(&v, 25000, 500000, &g), 25766);
+    /* Air drag with 35 % reduction: 2418.75 * 0.65 = 1572.19 N. */
+    const pfe_vehicle_t third = truck(3500U);
+    assert_int_equal(pfe_vehicle_air_n(&third, 25000), 1572);
+}
+
+static void test_platoon_aggregates(void **state)
+{
+    (void)state;
+    pfe_platoon_config_t cfg;
+    pfe_platoon_config_uniform(&cfg, 5U, 10000U, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    pfe_platoon_t pl;
+    memset(&pl, 0xA5, sizeof pl);
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    assert_int_equal(pl.n_vehicles, 5);
+    assert_int_equal(pl.mass_kg, 200000);
+    assert_int_equal(pl.object.power_max_w, 1250000);  /* eq. 4.4 */
+    assert_int_equal(pl.object.brake_max_n, 300000);   /* eq. 4.5 */
+    assert_int_equal(pl.object.power_aux_w, 20000);
+    assert_int_equal(pl.position[0].reduction_bp, 800);
+    assert_int_equal(pl.position[1].reduction_bp, 3100);
+    assert_int_equal(pl.position[4].reduction_bp, 3500);
+    /* eq. 4.6: 2418.75 N * (0.92 + 0.69 + 3 * 0.65) = 8610.75 N at 25 m/s. */
+    assert_in_range(pfe_vehicle_air_n(&pl.object, 25000), 8610, 8611);
+    /* eq. 4.8 and 4.10, small angle: 5 * 2746.8 N + 200 t * 9.81 * 0.02. */
+    pfe_grade_accel_t g;
+    pfe_platoon_grade_accel(&pl, 20000, &g);
+    assert_int_equal(g.along_um_s2, 196200);
+    assert_int_equal(g.normal_um_s2, 9810000);
+    assert_in_range(pfe_vehicle_resistance_n(&pl.object, 0, &g), 52974 - 1, 52974 + 1);
+    /* eq. 4.3: 2000 N on 200 t is 0.01 m/s^2. */
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, 2000 * 256), 10000);
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, -2000 * 256), -10000);
+    /* 1 N / 256 on 200 t: 0.0195 um/s^2, rounds to 0; 128 N: 640 um/s^2. */
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, 1), 0);
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, 128 * 256), 640);
+    /* The force is clamped at 2^35 / 256 N = 134 MN: 671 m/s^2 -> 20 m/s^2. */
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, INT64_MAX), PFE_ACCEL_MAX_UM_S2);
+}
+
+static void test_platoon_takes_weakest_power_to_mass(void **state)
+{
+    (void)state;
+    pfe_vehicle_calib_t light = pfe_default_vehicle;
+    light.mass_kg = 20000U;       /* 12.5 W/kg: stronger than 6.25 W/kg */
+    pfe_vehicle_calib_t weak = pfe_default_vehicle;
+    weak.power_max_w = 200000U;   /* 5 W/kg: the weakest */
+    weak.eta_ppm = 300000U;
+    pfe_platoon_config_t cfg;
+    pfe_platoon_config_uniform(&cfg, 3U, 10000U, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    cfg.vehicle[1] = &light;
+    cfg.vehicle[2] = &weak;
+    pfe_platoon_t pl;
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    assert_int_equal(pl.mass_kg, 100000);
+    assert_int_equal(pl.object.power_max_w, 500000); /* 5 W/kg * 100 t */
+    /* eta_mean = (0.4 + 0.4 + 0.3) / 3: 10^9 * 2^20 / (0.366667e6 * 35800) = 79881.4 */
+    assert_in_range(pl.object.fuel_q20, 79881 - 1, 79881 + 1);
+}
+
+static void test_platoon_rejects_bad_configuration(void **state)
+{
+    (void)state;
+    pfe_platoon_config_t cfg;
+    pfe_platoon_t pl;
+    pfe_platoon_config_uniform(&cfg, 5U, 10000U, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    cfg.n_vehicles = 0U;
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_EINVAL);
+    cfg.n_vehicles = PFE_MAX_VEHICLES + 1U;
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_EINVAL);
+    cfg.n_vehicles = 5U;
+    cfg.vehicle[3] = NULL;
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_EINVAL);
+    assert_int_equal(pfe_platoon_init(NULL, &cfg), PFE_EINVAL);
+    assert_int_equal(pfe_platoon_init(&pl, NULL), PFE_EINVAL);
+    /* The largest platoon is accepted. */
+    pfe_platoon_config_uniform(&cfg, PFE_MAX_VEHICLES, 10000U, &pfe_default_vehicle,
+                               &pfe_default_env, &pfe_default_drag);
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    assert_int_equal(pl.mass_kg, 40000U * PFE_MAX_VEHICLES);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_one_truck_flat_90_kmh_needs_129_kw),
+        cmocka_unit_test(test_grade_split_is_exact_trigonometry),
+        cmocka_unit_test(test_force_limits),
+        cmocka_unit_test(test_fuel_rate_and_fuel_cut),
+        cmocka_unit_test(test_fuel_force_includes_rotating_mass),
+        cmocka_unit_test(test_platoon_aggregates),
+        cmocka_unit_test(test_platoon_takes_weakest_power_to_mass),
+        cmocka_unit_test(test_platoon_rejects_bad_configuration),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
