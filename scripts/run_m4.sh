@@ -1,0 +1,66 @@
+#!/bin/sh
+# Run a Cortex-M4 ELF on QEMU's MPS2 AN386 board and return its exit code.
+#
+#   scripts/run_m4.sh [-t SECONDS] ELF
+#
+# Output: the program's semihosting console (hal/mps2/semihost.h) and newlib's
+# stdout (test images) go to this script's stdout; newlib's stderr (CMocka's
+# failure messages and summary) and QEMU's own messages go to its stderr.
+# Without the chardev below QEMU would send the semihosting console to its
+# stderr.
+# `-icount shift=0` makes virtual time count instructions, so
+# hal_mps2_icount_now() is deterministic (hal/mps2/icount.h).
+#
+# Time limit: -t SECONDS, else $M4_TIMEOUT_S, else 120 s of host time.
+#
+# Exit status:
+#   the program's exit code (main's return value, or hal_mps2_exit()'s
+#   status, modulo 256)
+#   124  the program did not finish in time (message on stderr)
+#   125  usage error, missing ELF, or QEMU not installed
+#   other QEMU's own failure (it exits 1 on a bad image, for example)
+
+set -u
+
+timeout_s=${M4_TIMEOUT_S:-120}
+if [ "${1:-}" = "-t" ]; then
+    if [ $# -lt 2 ]; then
+        echo "usage: $0 [-t SECONDS] ELF" >&2
+        exit 125
+    fi
+    timeout_s=$2
+    shift 2
+fi
+if [ $# -ne 1 ]; then
+    echo "usage: $0 [-t SECONDS] ELF" >&2
+    exit 125
+fi
+elf=$1
+if [ ! -f "$elf" ]; then
+    echo "run_m4.sh: no such file: $elf" >&2
+    exit 125
+fi
+qemu=${QEMU_SYSTEM_ARM:-qemu-system-arm}
+if ! command -v "$qemu" >/dev/null 2>&1; then
+    echo "run_m4.sh: $qemu not found (scripts/deps.sh installs qemu-system-arm)" >&2
+    exit 125
+fi
+
+# -serial none / -monitor none: output only through semihosting, and stdio
+# free for the semihosting console's chardev.
+# SIGKILL 5 s after SIGTERM in case QEMU ignores the first.
+timeout -k 5 "$timeout_s" "$qemu" \
+    -M mps2-an386 -nographic -monitor none -serial none \
+    -chardev stdio,id=semihost \
+    -semihosting-config enable=on,target=native,chardev=semihost \
+    -icount shift=0 \
+    -kernel "$elf" </dev/null
+rc=$?
+
+case $rc in
+124 | 137)
+    echo "run_m4.sh: $elf timed out after ${timeout_s} s" >&2
+    exit 124
+    ;;
+esac
+exit "$rc"
