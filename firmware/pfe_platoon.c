@@ -6,7 +6,6 @@
 #include "pfe_fixed.h"
 
 #define POW5_6 15625U
-#define FORCE_NET_MAX_Q8 ((int64_t)1 << 35) /* 134 MN: above any platoon's weight */
 
 void pfe_platoon_config_uniform(pfe_platoon_config_t *cfg, uint32_t n_vehicles, uint32_t gap_mm,
                                 const pfe_vehicle_calib_t *vehicle, const pfe_env_calib_t *env,
@@ -83,13 +82,9 @@ int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
     pl->mass_kg = (uint32_t)mass; /* <= 32 * 1e5 */
     pl->gravity_um_s2 = cfg->env->gravity_um_s2;
     pl->gravity_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)cfg->env->gravity_um_s2 << 26, POW5_6);
-    /* 1/M with 27 significant bits whatever M is (1 t to 3200 t). */
-    uint32_t shift = 16U;
-    while ((shift < 40U) && (((1000000ULL << (shift + 1U)) / mass) < (1ULL << 27))) {
-        shift++;
-    }
-    pl->inv_mass_shift = shift;
-    pl->inv_mass = (int64_t)pfe_udiv_round_u64(1000000ULL << shift, mass);
+    pl->inv_mass_q30 = (int64_t)pfe_udiv_round_u64(1000000ULL << 30, mass);
+    /* M [kg] * 20 m/s^2 * 4 <= 3.2e6 * 80 < 2^28 */
+    pl->force_limit_q2 = (int32_t)mass * (PFE_ACCEL_MAX_UM_S2 / 1000000) * 4;
     obj->mass_q32 = (int64_t)pfe_udiv_round_u64(mass << 26, POW5_6);
     /* eq. 4.14 with eta_mean = eta_sum / n: 10^9 * 2^20 * n / (eta_sum * rho_d). */
     obj->fuel_q20 = (int64_t)pfe_udiv_round_u64((1000000000ULL << 20) * n,
@@ -111,10 +106,9 @@ void pfe_platoon_grade_accel(const pfe_platoon_t *pl, int32_t grade_ppm, pfe_gra
     out->normal_um_s2 = (int32_t)pl->gravity_um_s2;
 }
 
-int32_t pfe_platoon_accel_um_s2(const pfe_platoon_t *pl, int64_t net_force_q8)
+int32_t pfe_platoon_accel_um_s2(const pfe_platoon_t *pl, int32_t net_force_q2)
 {
-    const int64_t f = pfe_clamp_i64(net_force_q8, -FORCE_NET_MAX_Q8, FORCE_NET_MAX_Q8);
-    /* inv_mass < 2^27, |f| <= 2^35: below 2^62. */
-    const int64_t a = pfe_rshift_round(pl->inv_mass * f, pl->inv_mass_shift + 8U);
-    return (int32_t)pfe_clamp_i64(a, -PFE_ACCEL_MAX_UM_S2, PFE_ACCEL_MAX_UM_S2);
+    const int32_t f = pfe_clamp_i32(net_force_q2, -pl->force_limit_q2, pl->force_limit_q2);
+    /* |f| * inv_mass_q30 <= M * 80 * (10^6 * 2^30 / M + 1) < 2^56.3 */
+    return (int32_t)pfe_rshift_round((int64_t)f * pl->inv_mass_q30, 32U);
 }

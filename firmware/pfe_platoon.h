@@ -42,8 +42,8 @@ typedef struct {
     uint32_t mass_kg;                            /* M */
     uint32_t gravity_um_s2;                      /* g */
     int64_t gravity_q32;                         /* g * 2^32 / 10^6, for g * grade */
-    int64_t inv_mass;                            /* 10^6 * 2^inv_mass_shift / M: um/s^2 per N */
-    uint32_t inv_mass_shift;                     /* chosen so that inv_mass is in [2^26, 2^27) */
+    int64_t inv_mass_q30;                        /* 10^6 * 2^30 / M: um/s^2 per N, * 2^30 */
+    int32_t force_limit_q2;                      /* M * PFE_ACCEL_MAX_UM_S2, N * 2^2 */
     pfe_vehicle_t object;                        /* the platoon as one point mass */
     pfe_vehicle_t position[PFE_MAX_VEHICLES];    /* each truck at its position */
 } pfe_platoon_t;
@@ -68,9 +68,11 @@ int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg);
  * normal = g. grade_ppm is clamped to +-PFE_GRADE_MAX_PPM. */
 void pfe_platoon_grade_accel(const pfe_platoon_t *pl, int32_t grade_ppm, pfe_grade_accel_t *out);
 
-/* Platoon acceleration for a net force in N * 2^8, eq. 4.3: a = F / M in
- * um/s^2, rounded, clamped to +-PFE_ACCEL_MAX_UM_S2 (the force is clamped to
- * +-2^35, i.e. 134 MN, first). 1/M carries 27 significant bits. */
-int32_t pfe_platoon_accel_um_s2(const pfe_platoon_t *pl, int64_t net_force_q8);
+/* Platoon acceleration for a net force in N * 2^2, eq. 4.3: a = F / M in
+ * um/s^2, rounded; the force is first clamped to M * PFE_ACCEL_MAX_UM_S2, so
+ * the result lies within +-PFE_ACCEL_MAX_UM_S2. 1/M is held in Q30: relative
+ * resolution 3e-6 for the largest platoon (3200 t), 4e-8 for one 40 t truck.
+ * Fixed shifts only: this runs in every simulation step. */
+int32_t pfe_platoon_accel_um_s2(const pfe_platoon_t *pl, int32_t net_force_q2);
 
 #endif /* PFE_PLATOON_H */

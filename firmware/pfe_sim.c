@@ -7,7 +7,7 @@
 
 /* 10^9 = 2^9 * 5^9 */
 #define POW5_9 1953125ULL
-#define ENERGY_MAX_MJ ((int64_t)1 << 40)
+#define FUEL_FORCE_MAX_Q2 ((int32_t)1 << 27) /* 33.5 MN: above any platoon's traction */
 
 static int32_t grade_at(const pfe_road_t *road, uint32_t position_mm)
 {
@@ -19,12 +19,17 @@ static int32_t grade_at(const pfe_road_t *road, uint32_t position_mm)
 }
 
 /* Fa + Fr + Fg of the object model at speed v and grade (eq. 4.6 to 4.10),
- * N * 2^8. */
-static int64_t resistance_q8(const pfe_platoon_t *pl, int32_t speed_mm_s, int32_t grade_ppm)
+ * N * 2^2 (finer than whole newtons, whose rounding bias would add up over a
+ * route): the sum of pfe_vehicle_resistance_n() with the small-angle grade of
+ * pfe_platoon_grade_accel(), its constant and linear parts folded at init.
+ * air_q32 < 2^22 and v < 2^17: below 2^56; weight_q36 < 2^42 (3200 t) and
+ * |grade| <= 2^19 (checked at init): below 2^61. The sum, at most about
+ * 3.4e7 N, fits 32 bits in N * 2^2. */
+static int32_t resistance_q2(const pfe_sim_t *sim, int32_t speed_mm_s, int32_t grade_ppm)
 {
-    pfe_grade_accel_t g;
-    pfe_platoon_grade_accel(pl, grade_ppm, &g);
-    return pfe_vehicle_resistance_q8(&pl->object, speed_mm_s, &g);
+    const int64_t v2 = (int64_t)speed_mm_s * (int64_t)speed_mm_s;
+    return (int32_t)(pfe_rshift_round(sim->platoon->object.air_q32 * v2, 30U) + sim->roll_q2 +
+                     pfe_rshift_round(sim->weight_q36 * (int64_t)grade_ppm, 34U));
 }
 
 /* Per-kg gain [1/s * 1000] to N per um/s * 2^32: M * k * 2^32 / 10^9. */
@@ -67,8 +72,21 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     sim->accel_um_s2 = 0;
     sim->fuel_step_nl = 0U;
     const pfe_vehicle_t *obj = &platoon->object;
-    const int32_t hold = pfe_sat_i32(
-        pfe_rshift_round(resistance_q8(platoon, initial_speed_mm_s, road->grade_ppm[0]), 8U));
+    /* cr M g: roll_q32 < 2^31 times g < 2^24, over 2^30. */
+    sim->roll_q2 = pfe_rshift_round(obj->roll_q32 * (int64_t)platoon->gravity_um_s2, 30U);
+    /* M g [N] * 2^36 / 10^6 = mass_q32 [kg * 2^32 / 10^6] * g [um/s^2] * 2^4
+     * / 10^6; mass_q32 * g < 2^57, times 2^4 below 2^61. */
+    sim->weight_q36 = (int64_t)pfe_udiv_round_u64(
+        ((uint64_t)obj->mass_q32 * platoon->gravity_um_s2) << 4, 1000000U);
+    /* Paux [mW] * fuel_q20 [nL/mJ * 2^20] / 2^12 = nL/s * 2^8; Paux <= 3.2e9 mW
+     * and fuel_q20 < 2^22 keep it below 2^41. */
+    sim->aux_fuel_q8 = pfe_rshift_round((int64_t)obj->power_aux_w * 1000 * obj->fuel_q20, 12U);
+    for (uint32_t k = 0U; k < road->n_samples; k++) {
+        if ((road->grade_ppm[k] < -PFE_GRADE_MAX_PPM) || (road->grade_ppm[k] > PFE_GRADE_MAX_PPM)) {
+            return PFE_EINVAL;
+        }
+    }
+    const int32_t hold = (resistance_q2(sim, initial_speed_mm_s, road->grade_ppm[0]) + 2) / 4;
     const int32_t f_max = pfe_wheel_force_max_n(obj->power_max_w, obj->traction_max_n,
                                                 initial_speed_mm_s);
     sim->wheel_force_n = pfe_clamp_i32(hold, -(int32_t)obj->brake_max_n, f_max);
@@ -95,25 +113,31 @@ int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road)
     const uint32_t dt_q16 = ((ds << 16) + (v / 2U)) / v;
 
     const int32_t grade = grade_at(road, sim->position_mm + (ds / 2U));
-    const int64_t resist_q8 = resistance_q8(pl, v_mm_s, grade);
+    const int32_t resist_q2 = resistance_q2(sim, v_mm_s, grade);
     const int32_t f_max = pfe_wheel_force_max_n(obj->power_max_w, obj->traction_max_n, v_mm_s);
     const int32_t force = pfe_pi_step(&sim->pi, sim->set_speed_um_s - sim->speed_um_s, dt_q16,
                                       -(int32_t)obj->brake_max_n, f_max);
-    const int32_t accel = pfe_platoon_accel_um_s2(pl, ((int64_t)force * 256) - resist_q8);
-    /* |a| <= 2^24.3, dt <= 2^19.4: product below 2^44. */
-    const int64_t speed = (int64_t)sim->speed_um_s + pfe_mul_q((int64_t)accel, (int32_t)dt_q16, 16U);
-    sim->speed_um_s = (int32_t)pfe_clamp_i64(speed, 0, (int64_t)PFE_SPEED_MAX_MM_S * 1000);
+    /* |force| <= 2^26 (PFE_PI_OUT_MAX), |resistance| < 2^27 in N * 2^2: fits. */
+    const int32_t accel = pfe_platoon_accel_um_s2(pl, (force * 4) - resist_q2);
+    /* |a| <= 2^24.3, dt <= 2^19.4: dv below 2^27.7, and the sum with a speed
+     * <= 7e7 um/s stays inside int32. */
+    const int32_t dv = (int32_t)pfe_mul_q((int64_t)accel, (int32_t)dt_q16, 16U);
+    sim->speed_um_s = pfe_clamp_i32(sim->speed_um_s + dv, 0, PFE_SPEED_MAX_MM_S * 1000);
 
-    /* eq. 3.7 / 4.14 in N * 2^8: mass_fuel_q32 < 2^35, |a| < 2^25. */
-    const int64_t fuel_force_q8 = pfe_mul_q(obj->mass_fuel_q32, accel, 24U) + resist_q8;
+    /* eq. 3.7 / 4.14 in N * 2^2: (M + Mj) a is within M * 20 m/s^2 * 1.03
+     * (mass_fuel_q32 < 2^35, |a| <= 2^24.3), the sum below 2^30. */
+    const int32_t fuel_force_q2 =
+        (int32_t)pfe_mul_q(obj->mass_fuel_q32, accel, 30U) + resist_q2;
     uint64_t fuel_step = 0U;
-    if (fuel_force_q8 > 0) {
-        /* N * mm = mJ (< 2^39 * 2^14 / 2^8); Paux [W] * dt [s * 2^16] * 1000 / 2^16
-         * = mJ (< 2^22 * 2^20 * 2^10). Clamped to 2^40 mJ; fuel_q20 < 2^22. */
-        const int64_t work = pfe_rshift_round(fuel_force_q8 * (int64_t)ds, 8U);
-        const int64_t aux = pfe_rshift_round((int64_t)obj->power_aux_w * (int64_t)dt_q16 * 1000, 16U);
-        const int64_t energy = pfe_clamp_i64(work + aux, 0, ENERGY_MAX_MJ);
-        fuel_step = (uint64_t)pfe_rshift_round(energy * obj->fuel_q20, 20U);
+    if (fuel_force_q2 > 0) {
+        /* Work Fw' ds and Paux dt in mJ times nL/mJ, in two products:
+         * Fw' [N * 2^2] <= 2^27 times ds * fuel_q20 (< 2^13.3 * 2^22) is below
+         * 2^62.3; aux_fuel_q8 < 2^41 times dt <= 2^19.3 below 2^61. */
+        const int32_t f = (fuel_force_q2 < FUEL_FORCE_MAX_Q2) ? fuel_force_q2 : FUEL_FORCE_MAX_Q2;
+        const int64_t work_coef = (int64_t)ds * obj->fuel_q20;
+        const int64_t work_nl = pfe_rshift_round((int64_t)f * work_coef, 22U);
+        const int64_t aux_nl = pfe_rshift_round(sim->aux_fuel_q8 * (int64_t)dt_q16, 24U);
+        fuel_step = (uint64_t)(work_nl + aux_nl);
     }
     sim->fuel_nl = pfe_sat_add_u64(sim->fuel_nl, fuel_step);
     sim->fuel_step_nl = fuel_step;

@@ -54,6 +54,11 @@ typedef struct {
     uint32_t step_mm;
     uint32_t end_mm;
     int32_t set_speed_um_s;
+    /* Object-model resistance split for the step (eq. 4.8, 4.10): the
+     * rolling part is constant, the grade part linear in the grade. */
+    int64_t roll_q2;         /* cr M g, N * 2^2 */
+    int64_t weight_q36;      /* M g in N, * 2^36 / 10^6: Fg = weight * grade_ppm / 2^36 */
+    int64_t aux_fuel_q8;     /* fuel for sum Paux, nL/s * 2^8 (eq. 4.14) */
     /* State after the last step. */
     int32_t speed_um_s;
     uint32_t position_mm;
@@ -72,7 +77,8 @@ typedef struct {
  * controller's integrator preset to the force that holds that speed on the
  * first grade sample (a start at equilibrium). The platoon and road must
  * outlive the run. Returns PFE_OK or PFE_EINVAL (NULL argument, empty road,
- * spacing 0, road longer than 4294 km, step out of range, speeds outside
+ * spacing 0, road longer than 4294 km, a grade sample beyond
+ * +-PFE_GRADE_MAX_PPM, step out of range, speeds outside
  * [PFE_SIM_STALL_MM_S, PFE_SPEED_MAX_MM_S], cruise calibration invalid).
  */
 int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_calib_t *cruise,

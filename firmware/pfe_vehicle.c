@@ -73,7 +73,8 @@ int32_t pfe_vehicle_air_n(const pfe_vehicle_t *veh, int32_t speed_mm_s)
 
 /* Fa + Fr + Fg in N * 2^32, one sum so that the result is rounded once.
  * air: < 2^56; roll_q32 < 2^26, mass_q32 < 2^30 per vehicle (2^31, 2^35 for
- * a platoon of PFE_MAX_VEHICLES) times |accel| < 2^25: the sum stays below 2^61. */
+ * a platoon of PFE_MAX_VEHICLES) times g cos < 2^23.3 and |g sin| < 2^22.1:
+ * the sum stays below 2^58. */
 static int64_t resistance_q32(const pfe_vehicle_t *veh, int32_t speed_mm_s,
                               const pfe_grade_accel_t *grade)
 {
@@ -88,18 +89,15 @@ int32_t pfe_vehicle_resistance_n(const pfe_vehicle_t *veh, int32_t speed_mm_s,
     return pfe_sat_i32(pfe_rshift_round(resistance_q32(veh, speed_mm_s, grade), 32U));
 }
 
-int64_t pfe_vehicle_resistance_q8(const pfe_vehicle_t *veh, int32_t speed_mm_s,
-                                  const pfe_grade_accel_t *grade)
-{
-    return pfe_rshift_round(resistance_q32(veh, speed_mm_s, grade), 24U);
-}
-
 int32_t pfe_vehicle_fuel_force_n(const pfe_vehicle_t *veh, int32_t speed_mm_s,
                                  int32_t accel_um_s2, const pfe_grade_accel_t *grade)
 {
     const int32_t a = pfe_clamp_i32(accel_um_s2, -PFE_ACCEL_MAX_UM_S2, PFE_ACCEL_MAX_UM_S2);
-    const int64_t inertia = pfe_mul_q(veh->mass_fuel_q32, a, 32U);
-    return pfe_sat_i32(inertia + (int64_t)pfe_vehicle_resistance_n(veh, speed_mm_s, grade));
+    /* One sum, rounded once: the resistance (< 2^58, see resistance_q32) plus
+     * (m + mj) a with mass_fuel_q32 < 2^30 per vehicle (2^35 for a platoon)
+     * and |a| <= 2^24.3, below 2^59.3: the total stays below 2^60. */
+    const int64_t inertia = veh->mass_fuel_q32 * (int64_t)a;
+    return pfe_sat_i32(pfe_rshift_round(inertia + resistance_q32(veh, speed_mm_s, grade), 32U));
 }
 
 int32_t pfe_wheel_force_max_n(uint32_t power_max_w, uint32_t traction_max_n, int32_t speed_mm_s)

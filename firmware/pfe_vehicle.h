@@ -74,11 +74,6 @@ int32_t pfe_vehicle_air_n(const pfe_vehicle_t *veh, int32_t speed_mm_s);
 int32_t pfe_vehicle_resistance_n(const pfe_vehicle_t *veh, int32_t speed_mm_s,
                                  const pfe_grade_accel_t *grade);
 
-/* The same in N * 2^8 (one rounding), for integrating over many steps
- * where a bias of up to 0.5 N would add up (pfe_sim). */
-int64_t pfe_vehicle_resistance_q8(const pfe_vehicle_t *veh, int32_t speed_mm_s,
-                                  const pfe_grade_accel_t *grade);
-
 /* Fw of the fuel model, eq. 3.7, rounded N. */
 int32_t pfe_vehicle_fuel_force_n(const pfe_vehicle_t *veh, int32_t speed_mm_s,
                                  int32_t accel_um_s2, const pfe_grade_accel_t *grade);

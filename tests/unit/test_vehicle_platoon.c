@@ -122,13 +122,14 @@ static void test_platoon_aggregates(void **state)
     assert_int_equal(g.normal_um_s2, 9810000);
     assert_in_range(pfe_vehicle_resistance_n(&pl.object, 0, &g), 52974 - 1, 52974 + 1);
     /* eq. 4.3: 2000 N on 200 t is 0.01 m/s^2. */
-    assert_int_equal(pfe_platoon_accel_um_s2(&pl, 2000 * 256), 10000);
-    assert_int_equal(pfe_platoon_accel_um_s2(&pl, -2000 * 256), -10000);
-    /* 1 N / 256 on 200 t: 0.0195 um/s^2, rounds to 0; 128 N: 640 um/s^2. */
-    assert_int_equal(pfe_platoon_accel_um_s2(&pl, 1), 0);
-    assert_int_equal(pfe_platoon_accel_um_s2(&pl, 128 * 256), 640);
-    /* The force is clamped at 2^35 / 256 N = 134 MN: 671 m/s^2 -> 20 m/s^2. */
-    assert_int_equal(pfe_platoon_accel_um_s2(&pl, INT64_MAX), PFE_ACCEL_MAX_UM_S2);
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, 2000 * 4), 10000);
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, -2000 * 4), -10000);
+    /* 0.25 N on 200 t: 1.25 um/s^2, rounds to 1; 128 N: 640 um/s^2. */
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, 1), 1);
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, 128 * 4), 640);
+    /* The force is clamped at M * 20 m/s^2. */
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, INT32_MAX), PFE_ACCEL_MAX_UM_S2);
+    assert_int_equal(pfe_platoon_accel_um_s2(&pl, INT32_MIN), -PFE_ACCEL_MAX_UM_S2);
 }
 
 static void test_platoon_takes_weakest_power_to_mass(void **state)
