@@ -30,7 +30,7 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all tools deps run test test-host test-m4 firmware bench help clean check-image check-checksum
+.PHONY: all tools deps run test test-host test-m4 firmware bench help clean check-image check-selfcheck
 .DEFAULT_GOAL := all
 
 all: tools
@@ -95,9 +95,80 @@ test-host: $(HOST_TEST_BINS)
 	@echo "== host: test_accuracy"; $(HOSTSAN)/test_accuracy $(ROADS)
 	@echo "== host: test_road_csv"; $(HOSTSAN)/test_road_csv $(ROADS) $(HOSTSAN)/roadgen
 
-test: test-host
+# ---------------------------------------------------------------- Cortex-M4 (QEMU mps2-an386)
+
+include mk/m4.mk
+# Optimised for instruction count, across files: the model's small helpers
+# (clamps, saturating adds) live in their own files and must inline.
+M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
+M4_LDFLAGS_IMAGE += -O2 -flto
+M4_LDFLAGS_TEST += -O2 -flto
+
+GEN := $(BUILD)/gen
+.SECONDARY: $(GEN)/road_hilly.c
+$(GEN)/road_%.c: $(ROADS)/%.csv $(HOST)/road2c
+	@mkdir -p $(@D)
+	$(HOST)/road2c $* $< $@
+
+# The product image: the model's known-answer run over the bundled hilly road.
+$(call m4_image,pfe_mps2,$(FW_SRC) hal/mps2/main_selfcheck.c $(GEN)/road_hilly.c)
+# Instruction counts (make bench).
+$(call m4_image,pfe_bench,$(FW_SRC) tests/bench/m4_bench.c $(GEN)/road_hilly.c)
+# The firmware's unit tests, cross-compiled.
+$(foreach t,$(UNIT_TESTS),$(call m4_test,unit_$(t),$(FW_SRC) tests/unit/$(t).c))
+
+FIRMWARE_ELF := $(M4_OUT)/pfe_mps2.elf
+
+firmware: $(DEPS_STAMP) $(FIRMWARE_ELF)
+	@$(M4_SIZE) $(FIRMWARE_ELF)
+
+# Fails if an image links the heap or floating-point helpers; and shows that
+# it can fail, on an image made to use floating point.
+$(M4_OUT)/test_bad_image_float.elf: $(M4_OUT)/obj/image/tests/m4/bad_image_float.o \
+        $(call m4__objs,image,$(M4_HAL_IMAGE_SRCS))
+	$(M4_CC) $(filter %.o,$^) $(M4_LDFLAGS_IMAGE) -o $@
+
+check-image: $(FIRMWARE_ELF) $(M4_OUT)/pfe_bench.elf $(M4_OUT)/test_bad_image_float.elf
+	$(M4_CHECK) $(FIRMWARE_ELF)
+	$(M4_CHECK) $(M4_OUT)/pfe_bench.elf
+	@if $(M4_CHECK) $(M4_OUT)/test_bad_image_float.elf >$(BUILD)/bad_image.txt 2>&1; then \
+	    echo "check-image: a floating-point image passed the check"; exit 1; fi
+	@grep -q __aeabi_f $(BUILD)/bad_image.txt && \
+	    echo "check-image: refuses an image with floating point, as it should"
+
+test-m4: $(DEPS_STAMP) $(addprefix $(M4_OUT)/unit_,$(addsuffix .elf,$(UNIT_TESTS)))
+	@set -e; for t in $(UNIT_TESTS); do echo "== Cortex-M4 unit: $$t"; \
+	    $(M4_RUN) $(M4_OUT)/unit_$$t.elf; done
+
+# Same inputs, bit-identical outputs on the host and on the Cortex-M4.
+$(HOST)/selfcheck: sim_host/selfcheck.c sim_host/road_csv.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/selfcheck.c sim_host/road_csv.c $(FW_SRC) -lm
+
+check-selfcheck: $(HOST)/selfcheck $(FIRMWARE_ELF)
+	$(HOST)/selfcheck $(ROADS)/hilly.csv > $(BUILD)/selfcheck_host.txt
+	$(M4_RUN) $(FIRMWARE_ELF) > $(BUILD)/selfcheck_m4.txt
+	@grep -q digest $(BUILD)/selfcheck_host.txt
+	@if cmp -s $(BUILD)/selfcheck_host.txt $(BUILD)/selfcheck_m4.txt; then \
+	    echo "selfcheck: host and Cortex-M4 outputs identical:"; \
+	    grep digest $(BUILD)/selfcheck_host.txt; \
+	else echo "selfcheck: host and Cortex-M4 outputs differ:"; \
+	    diff $(BUILD)/selfcheck_host.txt $(BUILD)/selfcheck_m4.txt; exit 1; fi
+
+test: test-host test-m4 check-selfcheck check-image m4-selftest
+
+# ---------------------------------------------------------------- benchmarks
+
+$(HOST)/host_bench: tests/bench/host_bench.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ $< $(FW_SRC) $(REF_SRC) -lm
+
+bench: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF)
+	@$(M4_RUN) $(M4_OUT)/pfe_bench.elf
+	@$(M4_CHECK) --bench pfe_mps2 $(FIRMWARE_ELF)
+	@echo "bench: pfe_mps2_heap $$($(M4_SIZE) -A $(FIRMWARE_ELF) | \
+	    awk '/heap/ { n += $$2 } END { print n + 0 }') bytes"
+	@$(HOST)/host_bench $(ROADS)
 
 clean:
 	rm -rf $(BUILD)
-
--include mk/m4.mk
