@@ -99,17 +99,9 @@ int main(int argc, char **argv)
         return 2;
     }
     char err[512];
-    road_profile_t road;
-    if (road_profile_load(road_path, &road, err, sizeof err) != 0) {
+    road_ppm_t road;
+    if (road_ppm_load(road_path, &road, err, sizeof err) != 0) {
         fprintf(stderr, "platoon_sim: %s\n", err);
-        return 2;
-    }
-    int32_t *grade = malloc(sizeof(int32_t) * road.n_samples);
-    uint32_t spacing_mm = 0U;
-    if ((grade == NULL) || (road_profile_to_ppm(&road, grade, &spacing_mm, err, sizeof err) != 0)) {
-        fprintf(stderr, "platoon_sim: %s\n", grade ? err : "out of memory");
-        free(grade);
-        road_profile_free(&road);
         return 2;
     }
     if (gap_m < 0.0) {
@@ -124,13 +116,12 @@ int main(int argc, char **argv)
         trace = fopen(trace_path, "w");
         if (trace == NULL) {
             fprintf(stderr, "platoon_sim: cannot write %s: %s\n", trace_path, strerror(errno));
-            free(grade);
-            road_profile_free(&road);
+            road_ppm_free(&road);
             return 2;
         }
     }
     const sim_compare_args_t args = {
-        .grade_ppm = grade, .n_samples = (uint32_t)road.n_samples, .spacing_mm = spacing_mm,
+        .grade_ppm = road.grade_ppm, .n_samples = road.n_samples, .spacing_mm = road.spacing_mm,
         .config = &cfg, .cruise = &pfe_default_cruise,
         .set_speed_mm_s = (int32_t)lround(set_kmh / 3.6 * 1000.0),
         .step_mm = (uint32_t)lround(step_m * 1000.0), .trace = trace,
@@ -140,13 +131,12 @@ int main(int argc, char **argv)
     if (trace != NULL) {
         fclose(trace);
     }
-    printf("road      %s: %zu samples at %.3f m, %.3f km\n", road_path, road.n_samples,
-           road.spacing_m, (double)road.n_samples * road.spacing_m / 1000.0);
+    printf("road      %s: %u samples at %.3f m, %.3f km\n", road_path, road.n_samples,
+           road.spacing_mm / 1000.0, (double)road.n_samples * road.spacing_mm / 1e6);
     printf("platoon   %u vehicles, gap %.2f m, set speed %.1f km/h, step %.2f m%s\n",
            cfg.n_vehicles, cfg.gap_mm / 1000.0, set_kmh, step_m,
            no_drag ? ", no drag reduction" : "");
-    free(grade);
-    road_profile_free(&road);
+    road_ppm_free(&road);
     if (rc != 0) {
         fprintf(stderr, "platoon_sim: %s\n", err);
         return 1;

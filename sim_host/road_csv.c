@@ -492,3 +492,38 @@ int road_profile_to_ppm(const road_profile_t *road, int32_t *grade_ppm_out,
     }
     return 0;
 }
+
+int road_ppm_load(const char *path, road_ppm_t *road, char *err, size_t err_len)
+{
+    road->grade_ppm = NULL;
+    road->n_samples = 0u;
+    road->spacing_mm = 0u;
+    road_profile_t prof;
+    if (road_profile_load(path, &prof, err, err_len) != 0) {
+        return -1;
+    }
+    int32_t *grade = malloc(sizeof(int32_t) * prof.n_samples);
+    char why[256];
+    int rc = -1;
+    if (grade == NULL) {
+        set_err(err, err_len, "%s: out of memory", path);
+    } else if (road_profile_to_ppm(&prof, grade, &road->spacing_mm, why, sizeof why) != 0) {
+        set_err(err, err_len, "%s: %s", path, why);
+    } else {
+        road->grade_ppm = grade;
+        road->n_samples = (uint32_t)prof.n_samples; /* <= ROAD_CSV_MAX_ROWS */
+        grade = NULL;
+        rc = 0;
+    }
+    free(grade);
+    road_profile_free(&prof);
+    return rc;
+}
+
+void road_ppm_free(road_ppm_t *road)
+{
+    free(road->grade_ppm);
+    road->grade_ppm = NULL;
+    road->n_samples = 0u;
+    road->spacing_mm = 0u;
+}

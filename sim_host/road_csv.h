@@ -96,4 +96,19 @@ void road_profile_free(road_profile_t *road);
 int road_profile_to_ppm(const road_profile_t *road, int32_t *grade_ppm_out,
                         uint32_t *spacing_mm_out, char *err, size_t err_len);
 
+/*
+ * A road as the firmware reads it (pfe_road_t): grade in ppm and spacing in
+ * mm, loaded in one call. Owns grade_ppm.
+ */
+typedef struct {
+    int32_t *grade_ppm;
+    uint32_t n_samples;
+    uint32_t spacing_mm;
+} road_ppm_t;
+
+/* road_profile_load() then road_profile_to_ppm(). Returns 0, or -1 with the
+ * message in err and *road empty. Errors from the conversion name the file. */
+int road_ppm_load(const char *path, road_ppm_t *road, char *err, size_t err_len);
+void road_ppm_free(road_ppm_t *road);
+
 #endif /* ROAD_CSV_H */

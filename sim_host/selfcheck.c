@@ -10,7 +10,6 @@
  */
 #include <inttypes.h>
 #include <stdio.h>
-#include <stdlib.h>
 
 #include "../firmware/pfe_fixed.h"
 #include "../firmware/pfe_selfcheck.h"
@@ -23,20 +22,12 @@ int main(int argc, char **argv)
         return 2;
     }
     char err[512];
-    road_profile_t prof;
-    if (road_profile_load(argv[1], &prof, err, sizeof err) != 0) {
+    road_ppm_t prof;
+    if (road_ppm_load(argv[1], &prof, err, sizeof err) != 0) {
         fprintf(stderr, "selfcheck: %s\n", err);
         return 2;
     }
-    int32_t *grade = malloc(sizeof(int32_t) * prof.n_samples);
-    uint32_t spacing_mm = 0U;
-    if ((grade == NULL) || (road_profile_to_ppm(&prof, grade, &spacing_mm, err, sizeof err) != 0)) {
-        fprintf(stderr, "selfcheck: %s\n", grade ? err : "out of memory");
-        free(grade);
-        road_profile_free(&prof);
-        return 2;
-    }
-    const pfe_road_t road = {grade, (uint32_t)prof.n_samples, spacing_mm};
+    const pfe_road_t road = {prof.grade_ppm, prof.n_samples, prof.spacing_mm};
     static const uint32_t sizes[2] = {1U, 5U};
     int status = 0;
     for (uint32_t k = 0U; k < 2U; k++) {
@@ -58,7 +49,6 @@ int main(int argc, char **argv)
         printf("selfcheck:   est_fuel_ul %" PRIu64 "\n", r.est_fuel_ul);
         printf("selfcheck:   est_pos0_fuel_ul %" PRIu64 "\n", r.est_pos0_fuel_ul);
     }
-    free(grade);
-    road_profile_free(&prof);
+    road_ppm_free(&prof);
     return status;
 }

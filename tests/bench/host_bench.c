@@ -10,7 +10,6 @@
  * Exit status 0, or 1 if a road cannot be loaded or simulated.
  */
 #include <stdio.h>
-#include <stdlib.h>
 
 #include "../../firmware/pfe_calib.h"
 #include "../../firmware/pfe_platoon.h"
@@ -29,22 +28,16 @@ int main(int argc, char **argv)
         char path[1024];
         char err[512];
         snprintf(path, sizeof path, "%s/%s.csv", argv[1], roads[r]);
-        road_profile_t prof;
-        if (road_profile_load(path, &prof, err, sizeof err) != 0) {
+        road_ppm_t road;
+        if (road_ppm_load(path, &road, err, sizeof err) != 0) {
             fprintf(stderr, "host_bench: %s\n", err);
-            return 1;
-        }
-        int32_t *grade = malloc(sizeof(int32_t) * prof.n_samples);
-        uint32_t spacing_mm = 0U;
-        if ((grade == NULL) || (road_profile_to_ppm(&prof, grade, &spacing_mm, err, sizeof err) != 0)) {
-            fprintf(stderr, "host_bench: %s\n", grade ? err : "out of memory");
             return 1;
         }
         for (unsigned k = 0U; k < 2U; k++) {
             pfe_platoon_config_t cfg;
             pfe_platoon_config_uniform(&cfg, sizes[k], 10000U, &pfe_default_vehicle,
                                        &pfe_default_env, &pfe_default_drag);
-            const sim_compare_args_t args = {grade, (uint32_t)prof.n_samples, spacing_mm, &cfg,
+            const sim_compare_args_t args = {road.grade_ppm, road.n_samples, road.spacing_mm, &cfg,
                                              &pfe_default_cruise, 25000, 10000U, NULL};
             sim_compare_t c;
             if (sim_compare_run(&args, &c, err, sizeof err) != 0) {
@@ -54,8 +47,7 @@ int main(int argc, char **argv)
             printf("bench: fuel_error_%s_n%u %+.5f %%\n", roads[r], sizes[k], 100.0 * c.fuel_rel_err);
             printf("bench: speed_rms_%s_n%u %.5f km/h\n", roads[r], sizes[k], c.speed_rms_kmh);
         }
-        free(grade);
-        road_profile_free(&prof);
+        road_ppm_free(&road);
     }
     return 0;
 }

@@ -28,42 +28,32 @@
 
 static const char *g_roads_dir;
 
-typedef struct {
-    int32_t *grade;
-    uint32_t n;
-    uint32_t spacing_mm;
-} road_t;
-
-static road_t load_road(const char *name)
+static road_ppm_t load_road(const char *name)
 {
     char path[512];
     char err[512];
     snprintf(path, sizeof path, "%s/%s.csv", g_roads_dir, name);
-    road_profile_t prof;
-    if (road_profile_load(path, &prof, err, sizeof err) != 0) {
+    road_ppm_t r;
+    if (road_ppm_load(path, &r, err, sizeof err) != 0) {
         fail_msg("%s", err);
     }
-    road_t r = {malloc(sizeof(int32_t) * prof.n_samples), (uint32_t)prof.n_samples, 0U};
-    assert_non_null(r.grade);
-    assert_int_equal(road_profile_to_ppm(&prof, r.grade, &r.spacing_mm, err, sizeof err), 0);
-    road_profile_free(&prof);
     return r;
 }
 
 static void check_object_model(const char *name, uint32_t n)
 {
-    road_t road = load_road(name);
+    road_ppm_t road = load_road(name);
     pfe_platoon_config_t cfg;
     pfe_platoon_config_uniform(&cfg, n, 10000U, &pfe_default_vehicle, &pfe_default_env,
                                &pfe_default_drag);
-    const sim_compare_args_t args = {road.grade, road.n, road.spacing_mm, &cfg, &pfe_default_cruise,
+    const sim_compare_args_t args = {road.grade_ppm, road.n_samples, road.spacing_mm, &cfg, &pfe_default_cruise,
                                      25000, 10000U, NULL};
     sim_compare_t r;
     char err[256];
     assert_int_equal(sim_compare_run(&args, &r, err, sizeof err), 0);
     print_message("%-6s N=%u  fuel %.4f L (ref %.4f L) error %+.5f %%, speed rms %.5f km/h\n", name,
                   n, r.fixed.fuel_l, r.ref.fuel_l, 100.0 * r.fuel_rel_err, r.speed_rms_kmh);
-    free(road.grade);
+    road_ppm_free(&road);
     assert_int_equal(r.steps, 1200);
     assert_true(r.ref.fuel_l > 1.0);
     assert_true(fabs(r.fuel_rel_err) <= 0.001);
@@ -72,13 +62,13 @@ static void check_object_model(const char *name, uint32_t n)
 
 static void check_estimator(const char *name, uint32_t n)
 {
-    road_t road = load_road(name);
+    road_ppm_t road = load_road(name);
     pfe_platoon_config_t cfg;
     pfe_platoon_config_uniform(&cfg, n, 10000U, &pfe_default_vehicle, &pfe_default_env,
                                &pfe_default_drag);
     drive_trace_t drive;
     char err[256];
-    assert_int_equal(drive_trace_make(road.grade, road.n, road.spacing_mm, &cfg, 25000, &drive, err,
+    assert_int_equal(drive_trace_make(road.grade_ppm, road.n_samples, road.spacing_mm, &cfg, 25000, &drive, err,
                                       sizeof err), 0);
     static pfe_platoon_t pl;
     static pfe_estimator_t est;
@@ -113,7 +103,7 @@ static void check_estimator(const char *name, uint32_t n)
                   name, n, drive.n_ticks, fixed_l, ref.fuel_used, 100.0 * err_total,
                   100.0 * worst_pos, 100.0 * worst_rate);
     drive_trace_free(&drive);
-    free(road.grade);
+    road_ppm_free(&road);
     assert_true(fabs(err_total) <= 0.001);
     assert_true(worst_pos <= 0.001);
     assert_true(worst_rate <= 0.01);
