@@ -1,0 +1,187 @@
+/* hal_fake.c - the test backend (contract in hal_fake.h). */
+#include "hal/fake/hal_fake.h"
+
+#include <stddef.h>
+#include <string.h>
+
+void hal_fake_bus_init(hal_fake_bus_t *bus)
+{
+    memset(bus, 0, sizeof *bus);
+}
+
+hal_can_t *hal_fake_open(hal_fake_bus_t *bus)
+{
+    for (uint32_t k = 0U; k < HAL_FAKE_MAX_HANDLES; k++) {
+        hal_can_t *h = &bus->handle[k];
+        if (!h->open) {
+            memset(h, 0, sizeof *h);
+            h->bus = bus;
+            h->open = true;
+            h->tx_space = UINT32_MAX;
+            return h;
+        }
+    }
+    return NULL;
+}
+
+void hal_fake_close(hal_can_t *can)
+{
+    if (can != NULL) {
+        can->open = false;
+    }
+}
+
+void hal_fake_set_tx_space(hal_can_t *can, uint32_t frames)
+{
+    can->tx_space = frames;
+}
+
+void hal_fake_advance_us(hal_fake_bus_t *bus, uint64_t us)
+{
+    bus->now_us += us;
+}
+
+uint64_t hal_fake_now_us(const hal_fake_bus_t *bus)
+{
+    return bus->now_us;
+}
+
+static bool accepts(const hal_can_t *h, uint32_t id)
+{
+    bool any = false;
+    for (uint32_t k = 0U; k < HAL_CAN_MAX_FILTERS; k++) {
+        if (h->filter_used[k]) {
+            any = true;
+            if ((id & h->filter_mask[k]) == (h->filter_id[k] & h->filter_mask[k])) {
+                return true;
+            }
+        }
+    }
+    return !any;
+}
+
+static bool frame_ok(const pfe_can_frame_t *f)
+{
+    if (f->dlc > PFE_CAN_MAX_DLC) {
+        return false;
+    }
+    if ((f->id & PFE_CAN_EFF_FLAG) != 0U) {
+        return (f->id & ~(PFE_CAN_EFF_FLAG | PFE_CAN_ID_MASK)) == 0U;
+    }
+    return f->id <= 0x7FFU;
+}
+
+int hal_can_send(hal_can_t *can, const pfe_can_frame_t *frame)
+{
+    if ((can == NULL) || !can->open || (frame == NULL) || !frame_ok(frame)) {
+        return HAL_EINVAL;
+    }
+    if (can->tx_space == 0U) {
+        return HAL_EAGAIN;
+    }
+    if (can->tx_space != UINT32_MAX) {
+        can->tx_space--;
+    }
+    hal_fake_bus_t *bus = can->bus;
+    for (uint32_t k = 0U; k < HAL_FAKE_MAX_HANDLES; k++) {
+        hal_can_t *h = &bus->handle[k];
+        if (!h->open || (h == can) || !accepts(h, frame->id)) {
+            continue;
+        }
+        if (h->rx_count == HAL_FAKE_RX_QUEUE) {
+            h->stats.rx_dropped++;
+            continue;
+        }
+        hal_can_rx_t *slot = &h->rx[(h->rx_head + h->rx_count) % HAL_FAKE_RX_QUEUE];
+        slot->frame = *frame;
+        slot->timestamp_us = bus->now_us;
+        h->rx_count++;
+    }
+    can->stats.tx_frames++;
+    return 0;
+}
+
+int hal_can_receive(hal_can_t *can, hal_can_rx_t *out)
+{
+    if ((can == NULL) || !can->open || (out == NULL)) {
+        return HAL_EINVAL;
+    }
+    if (can->rx_count == 0U) {
+        return HAL_EAGAIN;
+    }
+    *out = can->rx[can->rx_head];
+    can->rx_head = (can->rx_head + 1U) % HAL_FAKE_RX_QUEUE;
+    can->rx_count--;
+    can->stats.rx_frames++;
+    return 0;
+}
+
+int hal_can_add_filter(hal_can_t *can, uint32_t id, uint32_t mask)
+{
+    if ((can == NULL) || !can->open) {
+        return HAL_EINVAL;
+    }
+    for (uint32_t k = 0U; k < HAL_CAN_MAX_FILTERS; k++) {
+        if (!can->filter_used[k]) {
+            can->filter_used[k] = true;
+            can->filter_id[k] = id;
+            can->filter_mask[k] = mask;
+            return (int)k;
+        }
+    }
+    return HAL_ENOSPC;
+}
+
+int hal_can_remove_filter(hal_can_t *can, int index)
+{
+    if ((can == NULL) || (index < 0) || ((uint32_t)index >= HAL_CAN_MAX_FILTERS) ||
+        !can->filter_used[index]) {
+        return HAL_EINVAL;
+    }
+    can->filter_used[index] = false;
+    return 0;
+}
+
+void hal_can_get_stats(const hal_can_t *can, hal_can_stats_t *out)
+{
+    *out = can->stats;
+}
+
+void hal_fake_nvm_init(hal_nvm_t *nvm)
+{
+    memset(nvm->slot, 0xFF, sizeof nvm->slot);
+    nvm->tear_after = -1;
+    nvm->writes = 0U;
+}
+
+void hal_fake_nvm_tear_next_write(hal_nvm_t *nvm, uint32_t bytes)
+{
+    nvm->tear_after = (int32_t)((bytes < PFE_NVM_RECORD_SIZE) ? bytes : PFE_NVM_RECORD_SIZE);
+}
+
+int hal_nvm_read(hal_nvm_t *nvm, uint32_t slot, uint8_t buf[PFE_NVM_RECORD_SIZE])
+{
+    if ((nvm == NULL) || (slot >= PFE_NVM_SLOTS) || (buf == NULL)) {
+        return HAL_EINVAL;
+    }
+    memcpy(buf, nvm->slot[slot], PFE_NVM_RECORD_SIZE);
+    return 0;
+}
+
+int hal_nvm_write(hal_nvm_t *nvm, uint32_t slot, const uint8_t buf[PFE_NVM_RECORD_SIZE])
+{
+    if ((nvm == NULL) || (slot >= PFE_NVM_SLOTS) || (buf == NULL)) {
+        return HAL_EINVAL;
+    }
+    nvm->writes++;
+    if (nvm->tear_after >= 0) {
+        /* The bytes a reset leaves: the head new, the tail as erased flash. */
+        const uint32_t n = (uint32_t)nvm->tear_after;
+        memcpy(nvm->slot[slot], buf, n);
+        memset(&nvm->slot[slot][n], 0xFF, PFE_NVM_RECORD_SIZE - n);
+        nvm->tear_after = -1;
+        return HAL_EIO;
+    }
+    memcpy(nvm->slot[slot], buf, PFE_NVM_RECORD_SIZE);
+    return 0;
+}

@@ -1,0 +1,89 @@
+/* Unit tests: NVM records (pfe_nvm). Expected bytes and CRCs are literals. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "pfe_fixed.h"
+#include "pfe_nvm.h"
+
+static void test_crc32_check_value(void **state)
+{
+    (void)state;
+    /* The CRC-32/IEEE check value of "123456789". */
+    static const uint8_t digits[9] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+    assert_int_equal(pfe_crc32(digits, 9U), 0xCBF43926UL);
+    assert_int_equal(pfe_crc32(digits, 0U), 0x00000000UL);
+}
+
+static void test_record_layout_and_round_trip(void **state)
+{
+    (void)state;
+    const pfe_nvm_state_t s = {0x01020304UL, 2000000000000ULL, 0x1122334455667788ULL};
+    uint8_t rec[PFE_NVM_RECORD_SIZE];
+    memset(rec, 0xA5, sizeof rec);
+    pfe_nvm_encode(&s, rec);
+    static const uint8_t head[16] = {'P', 'F', 'N', '1', 0x04, 0x03, 0x02, 0x01,
+                                     /* 2e12 = 0x1D1A94A2000 */
+                                     0x00, 0x20, 0x4A, 0xA9, 0xD1, 0x01, 0x00, 0x00};
+    assert_memory_equal(rec, head, sizeof head);
+    assert_int_equal(rec[16], 0x88);
+    assert_int_equal(rec[23], 0x11);
+    pfe_nvm_state_t back;
+    memset(&back, 0xA5, sizeof back);
+    assert_int_equal(pfe_nvm_decode(rec, &back), PFE_OK);
+    assert_int_equal(back.sequence, s.sequence);
+    assert_true(back.own_fuel_ul == s.own_fuel_ul);
+    assert_true(back.platoon_fuel_ul == s.platoon_fuel_ul);
+    /* Any flipped bit is caught. */
+    for (uint32_t k = 0U; k < PFE_NVM_RECORD_SIZE * 8U; k++) {
+        uint8_t bad[PFE_NVM_RECORD_SIZE];
+        memcpy(bad, rec, sizeof bad);
+        bad[k / 8U] ^= (uint8_t)(1U << (k % 8U));
+        assert_int_equal(pfe_nvm_decode(bad, &back), PFE_EINVAL);
+    }
+}
+
+static void test_pick_newest_valid_slot(void **state)
+{
+    (void)state;
+    uint8_t a[PFE_NVM_RECORD_SIZE], b[PFE_NVM_RECORD_SIZE], erased[PFE_NVM_RECORD_SIZE];
+    memset(erased, 0xFF, sizeof erased);
+    pfe_nvm_state_t s = {7U, 100U, 500U};
+    pfe_nvm_encode(&s, a);
+    s = (pfe_nvm_state_t){8U, 150U, 700U};
+    pfe_nvm_encode(&s, b);
+    pfe_nvm_state_t got;
+    assert_int_equal(pfe_nvm_pick(a, b, &got), 1);
+    assert_true(got.own_fuel_ul == 150U);
+    assert_int_equal(pfe_nvm_next_slot(1), 0);
+    assert_int_equal(pfe_nvm_pick(b, a, &got), 0);
+    /* A torn newer slot: the older one wins. */
+    b[20] ^= 0x40U;
+    assert_int_equal(pfe_nvm_pick(a, b, &got), 0);
+    assert_true(got.own_fuel_ul == 100U);
+    /* Nothing valid: zeros and -1. */
+    assert_int_equal(pfe_nvm_pick(erased, NULL, &got), -1);
+    assert_true((got.sequence == 0U) && (got.own_fuel_ul == 0U) && (got.platoon_fuel_ul == 0U));
+    assert_int_equal(pfe_nvm_next_slot(-1), 0);
+    /* Sequence wrap: 0 is newer than 0xFFFFFFFF. */
+    s = (pfe_nvm_state_t){0xFFFFFFFFUL, 1U, 1U};
+    pfe_nvm_encode(&s, a);
+    s = (pfe_nvm_state_t){0U, 2U, 2U};
+    pfe_nvm_encode(&s, b);
+    assert_int_equal(pfe_nvm_pick(a, b, &got), 1);
+    assert_true(got.own_fuel_ul == 2U);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_crc32_check_value),
+        cmocka_unit_test(test_record_layout_and_round_trip),
+        cmocka_unit_test(test_pick_newest_valid_slot),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
