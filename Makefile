@@ -71,9 +71,12 @@ run: $(HOST)/platoon_sim
 
 # ---------------------------------------------------------------- host tests (ASan, UBSan)
 
-$(HOSTSAN)/unit_%: tests/unit/%.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+# Unit tests: the firmware plus the test backend (hal/fake), nothing else.
+UNIT_SRC := $(FW_SRC) hal/fake/hal_fake.c
+
+$(HOSTSAN)/unit_%: tests/unit/%.c $(UNIT_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(FW_SRC) -lcmocka
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(UNIT_SRC) -lcmocka
 
 $(HOSTSAN)/test_accuracy: tests/host/test_accuracy.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -115,7 +118,7 @@ $(call m4_image,pfe_mps2,$(FW_SRC) hal/mps2/main_selfcheck.c $(GEN)/road_hilly.c
 # Instruction counts (make bench).
 $(call m4_image,pfe_bench,$(FW_SRC) tests/bench/m4_bench.c $(GEN)/road_hilly.c)
 # The firmware's unit tests, cross-compiled.
-$(foreach t,$(UNIT_TESTS),$(call m4_test,unit_$(t),$(FW_SRC) tests/unit/$(t).c))
+$(foreach t,$(UNIT_TESTS),$(call m4_test,unit_$(t),$(UNIT_SRC) tests/unit/$(t).c))
 
 FIRMWARE_ELF := $(M4_OUT)/pfe_mps2.elf
 

@@ -1,0 +1,1168 @@
+/* pfe_codec.c - J1939 frames of can_dbc/pfe.dbc (contract in pfe_codec.h). */
+#include "pfe_codec.h"
+
+#include <stddef.h>
+#include <string.h>
+
+#include "pfe_calib.h"
+
+/* ------------------------------------------------------------ tables */
+
+#define RX PFE_CODEC_DIR_RX
+#define TX PFE_CODEC_DIR_TX
+#define SA_IN 0x00U
+#define SA_OUT PFE_CODEC_DEFAULT_ADDRESS
+
+const pfe_codec_message_t pfe_codec_messages[PFE_MSG_COUNT] = {
+    [PFE_MSG_CCVS1] = {"CCVS1", PFE_PGN_CCVS1, 6U, SA_IN, 8U, RX, 100U,
+                       (uint8_t)PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED, 1U},
+    [PFE_MSG_SSI] = {"SSI", PFE_PGN_SSI, 3U, SA_IN, 8U, RX, 10U,
+                     (uint8_t)PFE_CSIG_SSI_PITCH_ANGLE, 3U},
+    [PFE_MSG_PLATOON_CONFIG] = {"PFE_PlatoonConfig", PFE_PGN_PLATOON_CONFIG, 6U, SA_IN, 8U, RX,
+                                1000U, (uint8_t)PFE_CSIG_PC_NUMBER_OF_VEHICLES, 5U},
+    [PFE_MSG_GRADE_PREVIEW] = {"PFE_GradePreview", PFE_PGN_GRADE_PREVIEW, 6U, SA_IN, 8U, RX, 0U,
+                               (uint8_t)PFE_CSIG_GP_FRAME_TYPE, 8U},
+    [PFE_MSG_LFE1] = {"LFE1", PFE_PGN_LFE1, 6U, SA_OUT, 8U, TX, 100U,
+                      (uint8_t)PFE_CSIG_LFE1_ENGINE_FUEL_RATE, 1U},
+    [PFE_MSG_PLATOON_FUEL] = {"PFE_PlatoonFuel", PFE_PGN_PLATOON_FUEL, 6U, SA_OUT, 8U, TX, 100U,
+                              (uint8_t)PFE_CSIG_PF_PLATOON_FUEL_RATE, 2U},
+    [PFE_MSG_HRLFC] = {"HRLFC", PFE_PGN_HRLFC, 6U, SA_OUT, 8U, TX, 1000U,
+                       (uint8_t)PFE_CSIG_HRLFC_TRIP_FUEL, 2U},
+    [PFE_MSG_FUEL_PREDICTION] = {"PFE_FuelPrediction", PFE_PGN_FUEL_PREDICTION, 6U, SA_OUT, 8U,
+                                 TX, 1000U, (uint8_t)PFE_CSIG_FP_PREDICTED_FUEL, 4U},
+    [PFE_MSG_STATUS] = {"PFE_Status", PFE_PGN_STATUS, 6U, SA_OUT, 8U, TX, 1000U,
+                        (uint8_t)PFE_CSIG_ST_SPEED_INPUT, 12U},
+    [PFE_MSG_ADDRESS_CLAIMED] = {"AddressClaimed", PFE_PGN_ADDRESS_CLAIMED, 6U, SA_OUT, 8U,
+                                 RX | TX, 0U, (uint8_t)PFE_CSIG_AC_IDENTITY_NUMBER, 10U},
+    [PFE_MSG_REQUEST] = {"Request", PFE_PGN_REQUEST, 6U, SA_IN, 3U, RX | TX, 0U,
+                         (uint8_t)PFE_CSIG_RQST_REQUESTED_PGN, 1U},
+};
+
+#define NOMUX PFE_CODEC_MUX_NONE
+#define J1939 PFE_CODEC_RANGES_J1939
+#define PLAIN PFE_CODEC_RANGES_NONE
+/* message, PGN, signal, SPN, start, length, mux, ranges, scale, offset, raw min, raw max */
+#define SIG(...) SIG_(__VA_ARGS__) /* expands C_<message> into its name and PGN first */
+#define SIG_(msg, pgn, name, spn, start, len, mux, ranges, snum, sden, onum, oden, rmin, rmax) \
+    {msg, pgn, name, spn, start, len, PFE_CODEC_LITTLE_ENDIAN, false, mux, ranges, snum, sden, \
+     onum, oden, rmin, rmax}
+
+#define RAW16_MAX 0xFAFFU          /* J1939 2-byte valid area */
+#define RAW32_MAX 0xFAFFFFFFUL     /* J1939 4-byte valid area */
+#define C_CCVS1 "CCVS1", PFE_PGN_CCVS1
+#define C_SSI "SSI", PFE_PGN_SSI
+#define C_PC "PFE_PlatoonConfig", PFE_PGN_PLATOON_CONFIG
+#define C_GP "PFE_GradePreview", PFE_PGN_GRADE_PREVIEW
+#define C_LFE1 "LFE1", PFE_PGN_LFE1
+#define C_PF "PFE_PlatoonFuel", PFE_PGN_PLATOON_FUEL
+#define C_HRLFC "HRLFC", PFE_PGN_HRLFC
+#define C_FP "PFE_FuelPrediction", PFE_PGN_FUEL_PREDICTION
+#define C_ST "PFE_Status", PFE_PGN_STATUS
+#define C_AC "AddressClaimed", PFE_PGN_ADDRESS_CLAIMED
+#define C_RQ "Request", PFE_PGN_REQUEST
+
+const pfe_codec_signal_t pfe_codec_signals[PFE_CODEC_SIGNAL_COUNT] = {
+    [PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED] =
+        SIG(C_CCVS1, "WheelBasedVehicleSpeed", 84U, 8U, 16U, NOMUX, J1939, 1, 256, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_SSI_PITCH_ANGLE] =
+        SIG(C_SSI, "PitchAngle", 3318U, 0U, 16U, NOMUX, J1939, 1, 500, -64, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_SSI_ROLL_ANGLE] =
+        SIG(C_SSI, "RollAngle", 3319U, 16U, 16U, NOMUX, J1939, 1, 500, -64, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_SSI_PITCH_ANGLE_FOM] =
+        SIG(C_SSI, "PitchAngleFigureOfMerit", 3323U, 48U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_PC_NUMBER_OF_VEHICLES] =
+        SIG(C_PC, "NumberOfVehicles", 0U, 0U, 8U, NOMUX, J1939, 1, 1, 0, 1, 1U, 32U),
+    [PFE_CSIG_PC_OWN_POSITION] =
+        SIG(C_PC, "OwnPosition", 0U, 8U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, 31U),
+    [PFE_CSIG_PC_GAP] =
+        SIG(C_PC, "Gap", 0U, 16U, 16U, NOMUX, J1939, 1, 100, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_PC_TIME_GAP] =
+        SIG(C_PC, "TimeGap", 0U, 32U, 16U, NOMUX, J1939, 1, 1000, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_PC_SET_SPEED] =
+        SIG(C_PC, "SetSpeed", 0U, 48U, 16U, NOMUX, J1939, 1, 256, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_GP_FRAME_TYPE] =
+        SIG(C_GP, "PreviewFrameType", 0U, 0U, 2U, PFE_CODEC_MUXER, PLAIN, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_GP_PREVIEW_ID] =
+        SIG(C_GP, "PreviewId", 0U, 2U, 4U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 15U),
+    [PFE_CSIG_GP_SAMPLE_COUNT] =
+        SIG(C_GP, "SampleCount", 0U, 8U, 16U, 0, J1939, 1, 1, 0, 1, 1U, PFE_PREVIEW_MAX_SAMPLES),
+    [PFE_CSIG_GP_SAMPLE_SPACING] =
+        SIG(C_GP, "SampleSpacing", 0U, 24U, 8U, 0, J1939, 1, 1, 0, 1, 1U, 250U),
+    [PFE_CSIG_GP_SAMPLE_INDEX] =
+        SIG(C_GP, "SampleIndex", 0U, 6U, 10U, 1, PLAIN, 1, 1, 0, 1, 0U, PFE_PREVIEW_MAX_SAMPLES - 1U),
+    [PFE_CSIG_GP_GRADE_SAMPLE0] =
+        SIG(C_GP, "GradeSample0", 0U, 16U, 16U, 1, J1939, 1, 500, -64, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_GP_GRADE_SAMPLE1] =
+        SIG(C_GP, "GradeSample1", 0U, 32U, 16U, 1, J1939, 1, 500, -64, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_GP_GRADE_SAMPLE2] =
+        SIG(C_GP, "GradeSample2", 0U, 48U, 16U, 1, J1939, 1, 500, -64, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_LFE1_ENGINE_FUEL_RATE] =
+        SIG(C_LFE1, "EngineFuelRate", 183U, 0U, 16U, NOMUX, J1939, 1, 20, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_PF_PLATOON_FUEL_RATE] =
+        SIG(C_PF, "PlatoonFuelRate", 0U, 0U, 16U, NOMUX, J1939, 1, 20, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_PF_PLATOON_TOTAL_FUEL_USED] =
+        SIG(C_PF, "PlatoonTotalFuelUsed", 0U, 16U, 32U, NOMUX, J1939, 1, 1000, 0, 1, 0U, RAW32_MAX),
+    [PFE_CSIG_HRLFC_TRIP_FUEL] =
+        SIG(C_HRLFC, "HighResolutionEngineTripFuel", 5053U, 0U, 32U, NOMUX, J1939, 1, 1000, 0, 1, 0U,
+            RAW32_MAX),
+    [PFE_CSIG_HRLFC_TOTAL_FUEL_USED] =
+        SIG(C_HRLFC, "HighResolutionEngineTotalFuelUsed", 5054U, 32U, 32U, NOMUX, J1939, 1, 1000, 0,
+            1, 0U, RAW32_MAX),
+    [PFE_CSIG_FP_PREDICTED_FUEL] =
+        SIG(C_FP, "PredictedFuel", 0U, 0U, 16U, NOMUX, J1939, 1, 100, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_FP_PREDICTED_FUEL_LOWER] =
+        SIG(C_FP, "PredictedFuelLowerBound", 0U, 16U, 16U, NOMUX, J1939, 1, 100, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_FP_PREDICTED_FUEL_UPPER] =
+        SIG(C_FP, "PredictedFuelUpperBound", 0U, 32U, 16U, NOMUX, J1939, 1, 100, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_FP_PREDICTED_TIME] =
+        SIG(C_FP, "PredictedTime", 0U, 48U, 16U, NOMUX, J1939, 1, 10, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_ST_SPEED_INPUT] =
+        SIG(C_ST, "SpeedInputState", 0U, 0U, 2U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 3U),
+    [PFE_CSIG_ST_GRADE_INPUT] =
+        SIG(C_ST, "GradeInputState", 0U, 2U, 2U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 3U),
+    [PFE_CSIG_ST_PLATOON_CONFIG_INPUT] =
+        SIG(C_ST, "PlatoonConfigInputState", 0U, 4U, 2U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 3U),
+    [PFE_CSIG_ST_GRADE_PREVIEW_INPUT] =
+        SIG(C_ST, "GradePreviewInputState", 0U, 6U, 2U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 3U),
+    [PFE_CSIG_ST_DEGRADED_MODE] =
+        SIG(C_ST, "DegradedMode", 0U, 8U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, 2U),
+    [PFE_CSIG_ST_RX_FRAMES_DROPPED] =
+        SIG(C_ST, "RxFramesDropped", 0U, 16U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
+    [PFE_CSIG_ST_TICK_OVERRUNS] =
+        SIG(C_ST, "TickOverruns", 0U, 24U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
+    [PFE_CSIG_ST_TX_FRAMES_DROPPED] =
+        SIG(C_ST, "TxFramesDropped", 0U, 32U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
+    [PFE_CSIG_ST_WARMING_UP] =
+        SIG(C_ST, "WarmingUp", 0U, 40U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_ST_SPEED_CLAMPED] =
+        SIG(C_ST, "SpeedClamped", 0U, 42U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_ST_GRADE_CLAMPED] =
+        SIG(C_ST, "GradeClamped", 0U, 44U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_ST_OUTPUT_SATURATED] =
+        SIG(C_ST, "OutputSaturated", 0U, 46U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_AC_IDENTITY_NUMBER] =
+        SIG(C_AC, "IdentityNumber", 2837U, 0U, 21U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 0x1FFFFFUL),
+    [PFE_CSIG_AC_MANUFACTURER_CODE] =
+        SIG(C_AC, "ManufacturerCode", 2838U, 21U, 11U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 0x7FFU),
+    [PFE_CSIG_AC_ECU_INSTANCE] =
+        SIG(C_AC, "EcuInstance", 2840U, 32U, 3U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 7U),
+    [PFE_CSIG_AC_FUNCTION_INSTANCE] =
+        SIG(C_AC, "FunctionInstance", 2839U, 35U, 5U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 31U),
+    [PFE_CSIG_AC_FUNCTION] =
+        SIG(C_AC, "Function", 2841U, 40U, 8U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 255U),
+    [PFE_CSIG_AC_RESERVED] =
+        SIG(C_AC, "NameReserved", 0U, 48U, 1U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_AC_VEHICLE_SYSTEM] =
+        SIG(C_AC, "VehicleSystem", 2842U, 49U, 7U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 127U),
+    [PFE_CSIG_AC_VEHICLE_SYSTEM_INSTANCE] =
+        SIG(C_AC, "VehicleSystemInstance", 2843U, 56U, 4U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 15U),
+    [PFE_CSIG_AC_INDUSTRY_GROUP] =
+        SIG(C_AC, "IndustryGroup", 2846U, 60U, 3U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 7U),
+    [PFE_CSIG_AC_ARBITRARY_ADDRESS_CAPABLE] =
+        SIG(C_AC, "ArbitraryAddressCapable", 2844U, 63U, 1U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_RQST_REQUESTED_PGN] =
+        SIG(C_RQ, "RequestedPGN", 2540U, 0U, 24U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 0x3FFFFUL),
+};
+
+const uint32_t pfe_codec_signal_count = (uint32_t)PFE_CODEC_SIGNAL_COUNT;
+
+const pfe_codec_message_t *pfe_codec_find_message(uint32_t id)
+{
+    if ((id & PFE_CAN_EFF_FLAG) == 0U) {
+        return NULL;
+    }
+    const uint32_t pgn = pfe_j1939_pgn(id & PFE_CAN_ID_MASK);
+    for (uint32_t m = 0U; m < (uint32_t)PFE_MSG_COUNT; m++) {
+        if (pfe_codec_messages[m].pgn == pgn) {
+            return &pfe_codec_messages[m];
+        }
+    }
+    return NULL;
+}
+
+/* ------------------------------------------------------------ raw access */
+
+static uint64_t load_le64(const uint8_t data[PFE_CAN_MAX_DLC])
+{
+    uint64_t v = 0U;
+    for (uint32_t i = PFE_CAN_MAX_DLC; i > 0U; i--) {
+        v = (v << 8) | (uint64_t)data[i - 1U];
+    }
+    return v;
+}
+
+static void store_le64(uint8_t data[PFE_CAN_MAX_DLC], uint64_t v)
+{
+    for (uint32_t i = 0U; i < PFE_CAN_MAX_DLC; i++) {
+        data[i] = (uint8_t)(v >> (8U * i));
+    }
+}
+
+static bool sig_fits(const pfe_codec_signal_t *sig)
+{
+    return (sig->length >= 1U) && (sig->length <= 32U) &&
+           (((uint32_t)sig->start_bit + (uint32_t)sig->length) <= 64U);
+}
+
+static uint32_t sig_mask(const pfe_codec_signal_t *sig)
+{
+    return (sig->length >= 32U) ? UINT32_MAX : (((uint32_t)1U << sig->length) - 1U);
+}
+
+uint32_t pfe_codec_raw_get(const uint8_t data[PFE_CAN_MAX_DLC], const pfe_codec_signal_t *sig)
+{
+    if ((data == NULL) || (sig == NULL) || !sig_fits(sig)) {
+        return 0U;
+    }
+    return (uint32_t)(load_le64(data) >> sig->start_bit) & sig_mask(sig);
+}
+
+void pfe_codec_raw_put(uint8_t data[PFE_CAN_MAX_DLC], const pfe_codec_signal_t *sig, uint32_t raw)
+{
+    if ((data == NULL) || (sig == NULL) || !sig_fits(sig)) {
+        return;
+    }
+    const uint64_t mask = (uint64_t)sig_mask(sig) << sig->start_bit;
+    const uint64_t v = (load_le64(data) & ~mask) | (((uint64_t)raw << sig->start_bit) & mask);
+    store_le64(data, v);
+}
+
+pfe_sig_state_t pfe_codec_raw_state(const pfe_codec_signal_t *sig, uint32_t raw)
+{
+    if (sig == NULL) {
+        return PFE_SIG_NOT_AVAILABLE;
+    }
+    if (sig->ranges == PFE_CODEC_RANGES_J1939) {
+        if (sig->length == 2U) {
+            if (raw == 3U) {
+                return PFE_SIG_NOT_AVAILABLE;
+            }
+            if (raw == 2U) {
+                return PFE_SIG_ERROR;
+            }
+        } else if ((sig->length >= 8U) && (sig->length <= 32U) && ((sig->length % 8U) == 0U)) {
+            /* The most significant byte selects the range (J1939-71). */
+            const uint32_t top = raw >> (sig->length - 8U);
+            if (top == 0xFFU) {
+                return PFE_SIG_NOT_AVAILABLE;
+            }
+            if (top == 0xFEU) {
+                return PFE_SIG_ERROR;
+            }
+            if (top >= 0xFBU) {
+                return PFE_SIG_OUT_OF_RANGE; /* parameter-specific or reserved */
+            }
+        } else {
+            /* no other lengths carry J1939 ranges in this table */
+        }
+    }
+    if ((raw < sig->raw_min) || (raw > sig->raw_max)) {
+        return PFE_SIG_OUT_OF_RANGE;
+    }
+    return PFE_SIG_VALID;
+}
+
+uint32_t pfe_codec_raw_code(const pfe_codec_signal_t *sig, pfe_sig_state_t state)
+{
+    if (sig == NULL) {
+        return UINT32_MAX;
+    }
+    const uint32_t ones = sig_mask(sig);
+    if ((state == PFE_SIG_ERROR) && (sig->ranges == PFE_CODEC_RANGES_J1939)) {
+        if (sig->length == 2U) {
+            return 2U;
+        }
+        if ((sig->length >= 8U) && ((sig->length % 8U) == 0U)) {
+            /* 0xFE in the top byte, the rest (don't care) as ones */
+            return ones & ~((uint32_t)1U << (sig->length - 8U));
+        }
+    }
+    return ones;
+}
+
+/* ------------------------------------------------------------ helpers */
+
+/* num / den rounded to nearest, halves toward +infinity; den > 0, |num| < 2^61. */
+static int64_t div_round_i64(int64_t num, int64_t den)
+{
+    const int64_t n2 = (2 * num) + den;
+    const int64_t d2 = 2 * den;
+    int64_t q = n2 / d2;
+    if (((n2 % d2) != 0) && (n2 < 0)) {
+        q -= 1; /* floor */
+    }
+    return q;
+}
+
+static int check_frame(const pfe_can_frame_t *frame, pfe_msg_index_t msg)
+{
+    if (frame == NULL) {
+        return PFE_EINVAL;
+    }
+    if (((frame->id & PFE_CAN_EFF_FLAG) == 0U) ||
+        (pfe_j1939_pgn(frame->id & PFE_CAN_ID_MASK) != pfe_codec_messages[msg].pgn)) {
+        return PFE_CODEC_EID;
+    }
+    if (frame->dlc != pfe_codec_messages[msg].dlc) {
+        return PFE_CODEC_EDLC;
+    }
+    return PFE_OK;
+}
+
+/* Raw value and state of one signal of a received frame. */
+static pfe_sig_state_t get_raw(const pfe_can_frame_t *frame, pfe_sig_index_t i, uint32_t *raw)
+{
+    *raw = pfe_codec_raw_get(frame->data, &pfe_codec_signals[i]);
+    return pfe_codec_raw_state(&pfe_codec_signals[i], *raw);
+}
+
+static pfe_sig_u32_t dec_u32(const pfe_can_frame_t *frame, pfe_sig_index_t i)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = get_raw(frame, i, &raw);
+    const pfe_sig_u32_t out = {(st == PFE_SIG_VALID) ? raw : 0U, st};
+    return out;
+}
+
+static const pfe_sig_u32_t u32_na = {0U, PFE_SIG_NOT_AVAILABLE};
+static const pfe_sig_i32_t i32_na = {0, PFE_SIG_NOT_AVAILABLE};
+static const pfe_sig_u64_t u64_na = {0U, PFE_SIG_NOT_AVAILABLE};
+
+/* Unit conversions of the received raw values (raw within its valid range). */
+static int32_t speed_mm_s_of_raw(uint32_t raw)       /* 1/256 km/h = 625/576 mm/s */
+{
+    return (int32_t)((((uint64_t)raw * 625U) + 288U) / 576U);
+}
+
+static int32_t angle_udeg_of_raw(uint32_t raw)       /* 0.002 deg, offset -64 deg */
+{
+    return ((int32_t)raw * 2000) - 64000000;
+}
+
+static int32_t grade_ppm_of_raw(uint32_t raw)        /* 0.002 % = 20 ppm, offset -64 % */
+{
+    return ((int32_t)raw * 20) - 640000;
+}
+
+static uint32_t fuel_rate_nl_s_of_raw(uint32_t raw)  /* 0.05 L/h = 125000/9 nL/s */
+{
+    return (uint32_t)((((uint64_t)raw * 125000U) + 4U) / 9U);
+}
+
+static pfe_sig_i32_t dec_speed(const pfe_can_frame_t *frame, pfe_sig_index_t i)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = get_raw(frame, i, &raw);
+    const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? speed_mm_s_of_raw(raw) : 0, st};
+    return out;
+}
+
+static pfe_sig_i32_t dec_angle(const pfe_can_frame_t *frame, pfe_sig_index_t i)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = get_raw(frame, i, &raw);
+    const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? angle_udeg_of_raw(raw) : 0, st};
+    return out;
+}
+
+static pfe_sig_i32_t dec_grade(const pfe_can_frame_t *frame, pfe_sig_index_t i)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = get_raw(frame, i, &raw);
+    const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? grade_ppm_of_raw(raw) : 0, st};
+    return out;
+}
+
+static pfe_sig_u32_t dec_fuel_rate(const pfe_can_frame_t *frame, pfe_sig_index_t i)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = get_raw(frame, i, &raw);
+    const pfe_sig_u32_t out = {(st == PFE_SIG_VALID) ? fuel_rate_nl_s_of_raw(raw) : 0U, st};
+    return out;
+}
+
+/* Raw times a whole number of firmware units (0.001 L = 1000 uL, ...). */
+static pfe_sig_u64_t dec_u64_times(const pfe_can_frame_t *frame, pfe_sig_index_t i, uint32_t unit)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = get_raw(frame, i, &raw);
+    const pfe_sig_u64_t out = {(st == PFE_SIG_VALID) ? ((uint64_t)raw * unit) : 0U, st};
+    return out;
+}
+
+static pfe_sig_u32_t dec_u32_times(const pfe_can_frame_t *frame, pfe_sig_index_t i, uint32_t unit)
+{
+    const pfe_sig_u64_t v = dec_u64_times(frame, i, unit);
+    const pfe_sig_u32_t out = {(uint32_t)v.value, v.state}; /* callers: raw_max * unit < 2^32 */
+    return out;
+}
+
+/* Encoding: one message's payload and the mask of clamped signals. */
+typedef struct {
+    pfe_can_frame_t *frame;
+    uint32_t first;
+    uint32_t clamped;
+} enc_t;
+
+static int enc_begin(enc_t *e, pfe_can_frame_t *frame, pfe_msg_index_t msg, uint8_t destination,
+                     uint8_t source)
+{
+    if (frame == NULL) {
+        return PFE_EINVAL;
+    }
+    const pfe_codec_message_t *m = &pfe_codec_messages[msg];
+    frame->id = pfe_j1939_id(m->priority, m->pgn, destination, source);
+    frame->dlc = m->dlc;
+    (void)memset(frame->data, 0xFF, sizeof frame->data);
+    e->frame = frame;
+    e->first = m->first_signal;
+    e->clamped = 0U;
+    return PFE_OK;
+}
+
+/* Writes a value already in raw counts (any int64), clamped to the valid
+ * range, or the code for a NOT_AVAILABLE or ERROR state. */
+static void enc_put(enc_t *e, pfe_sig_index_t i, pfe_sig_state_t state, int64_t raw)
+{
+    const pfe_codec_signal_t *sig = &pfe_codec_signals[i];
+    if ((state == PFE_SIG_NOT_AVAILABLE) || (state == PFE_SIG_ERROR)) {
+        pfe_codec_raw_put(e->frame->data, sig, pfe_codec_raw_code(sig, state));
+        return;
+    }
+    int64_t r = raw;
+    if ((r < (int64_t)sig->raw_min) || (r > (int64_t)sig->raw_max)) {
+        r = (r < (int64_t)sig->raw_min) ? (int64_t)sig->raw_min : (int64_t)sig->raw_max;
+        e->clamped |= (uint32_t)1U << ((uint32_t)i - e->first);
+    }
+    pfe_codec_raw_put(e->frame->data, sig, (uint32_t)r);
+}
+
+static int enc_end(const enc_t *e)
+{
+    return (int)e->clamped;
+}
+
+/* Raw counts of firmware values (rounded to nearest). */
+static int64_t raw_of_speed_mm_s(int32_t mm_s)
+{
+    return div_round_i64((int64_t)mm_s * 576, 625);
+}
+
+static int64_t raw_of_angle_udeg(int32_t udeg)
+{
+    return div_round_i64((int64_t)udeg + 64000000, 2000);
+}
+
+static int64_t raw_of_grade_ppm(int32_t ppm)
+{
+    return div_round_i64((int64_t)ppm + 640000, 20);
+}
+
+static int64_t raw_of_fuel_rate_nl_s(uint32_t nl_s)
+{
+    return (int64_t)pfe_udiv_round_u64((uint64_t)nl_s * 9U, 125000U);
+}
+
+static int64_t raw_of_unsigned(uint64_t value, uint64_t unit)
+{
+    return (int64_t)pfe_udiv_round_u64(value, unit); /* value / unit < 2^63 for unit >= 2 */
+}
+
+/* ------------------------------------------------------------ CCVS1 */
+
+int pfe_codec_decode_ccvs1(const pfe_can_frame_t *frame, pfe_msg_ccvs1_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->speed_mm_s = i32_na;
+    const int rc = check_frame(frame, PFE_MSG_CCVS1);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->speed_mm_s = dec_speed(frame, PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED); /* CCVS1.WheelBasedVehicleSpeed (SPN 84) */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_ccvs1(pfe_can_frame_t *frame, const pfe_msg_ccvs1_t *in, uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) || (enc_begin(&e, frame, PFE_MSG_CCVS1, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED, in->speed_mm_s.state,
+            raw_of_speed_mm_s(in->speed_mm_s.value));
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ SSI */
+
+int pfe_codec_decode_ssi(const pfe_can_frame_t *frame, pfe_msg_ssi_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->pitch_udeg = i32_na;
+    out->roll_udeg = i32_na;
+    out->pitch_fom = u32_na;
+    const int rc = check_frame(frame, PFE_MSG_SSI);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->pitch_udeg = dec_angle(frame, PFE_CSIG_SSI_PITCH_ANGLE);          /* SSI.PitchAngle (SPN 3318) */
+    out->roll_udeg = dec_angle(frame, PFE_CSIG_SSI_ROLL_ANGLE);            /* SSI.RollAngle (SPN 3319) */
+    out->pitch_fom = dec_u32(frame, PFE_CSIG_SSI_PITCH_ANGLE_FOM);         /* SSI.PitchAngleFigureOfMerit (SPN 3323) */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_ssi(pfe_can_frame_t *frame, const pfe_msg_ssi_t *in, uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) || (enc_begin(&e, frame, PFE_MSG_SSI, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_SSI_PITCH_ANGLE, in->pitch_udeg.state, raw_of_angle_udeg(in->pitch_udeg.value));
+    enc_put(&e, PFE_CSIG_SSI_ROLL_ANGLE, in->roll_udeg.state, raw_of_angle_udeg(in->roll_udeg.value));
+    enc_put(&e, PFE_CSIG_SSI_PITCH_ANGLE_FOM, in->pitch_fom.state, (int64_t)in->pitch_fom.value);
+    return enc_end(&e);
+}
+
+/* Beyond 26.6 deg the tangent (0.50076) is past the limit whatever the rounding. */
+#define PITCH_SATURATED_UDEG 26600000U
+/* pi / 180e6 * 2^62, rounded: micro-degrees to radians in Q62. */
+#define UDEG_TO_RAD_Q62 80489105090LL
+#define Q30_ONE ((int64_t)1 << 30)
+#define RECIP_Q30(n) ((Q30_ONE + ((n) / 2)) / (n))
+
+/* a * b in Q30, rounded; 0 <= a, b <= 2^30. */
+static int64_t mul_q30(int64_t a, int64_t b)
+{
+    return ((a * b) + ((int64_t)1 << 29)) >> 30;
+}
+
+int32_t pfe_codec_grade_ppm_from_pitch(int32_t pitch_udeg, bool *saturated)
+{
+    const bool negative = pitch_udeg < 0;
+    const uint32_t mag = negative ? (0U - (uint32_t)pitch_udeg) : (uint32_t)pitch_udeg;
+    bool sat = false;
+    int64_t ppm;
+    if (mag > PITCH_SATURATED_UDEG) {
+        sat = true;
+        ppm = PFE_GRADE_MAX_PPM;
+    } else {
+        /* x <= 0.4643 rad; x^2 <= 0.2156. mag * K < 2^25 * 2^37. */
+        const int64_t x = (((int64_t)mag * UDEG_TO_RAD_Q62) + ((int64_t)1 << 31)) >> 32;
+        const int64_t x2 = mul_q30(x, x);
+        /* sin x / x = 1 - x^2/(2*3) (1 - x^2/(4*5) (1 - ... (1 - x^2/(10*11)))) */
+        int64_t s = Q30_ONE;
+        s = Q30_ONE - mul_q30(mul_q30(x2, s), RECIP_Q30(110));
+        s = Q30_ONE - mul_q30(mul_q30(x2, s), RECIP_Q30(72));
+        s = Q30_ONE - mul_q30(mul_q30(x2, s), RECIP_Q30(42));
+        s = Q30_ONE - mul_q30(mul_q30(x2, s), RECIP_Q30(20));
+        s = Q30_ONE - mul_q30(mul_q30(x2, s), RECIP_Q30(6));
+        const int64_t sin_q30 = mul_q30(x, s);
+        /* cos x = 1 - x^2/(1*2) (1 - x^2/(3*4) (1 - ... (1 - x^2/(11*12)))) */
+        int64_t c = Q30_ONE;
+        c = Q30_ONE - mul_q30(mul_q30(x2, c), RECIP_Q30(132));
+        c = Q30_ONE - mul_q30(mul_q30(x2, c), RECIP_Q30(90));
+        c = Q30_ONE - mul_q30(mul_q30(x2, c), RECIP_Q30(56));
+        c = Q30_ONE - mul_q30(mul_q30(x2, c), RECIP_Q30(30));
+        c = Q30_ONE - mul_q30(mul_q30(x2, c), RECIP_Q30(12));
+        const int64_t cos_q30 = Q30_ONE - mul_q30(x2, c) / 2;
+        /* cos >= 0.89 * 2^30; sin * 1e6 < 2^50 */
+        ppm = ((sin_q30 * 1000000) + (cos_q30 / 2)) / cos_q30;
+        if (ppm > PFE_GRADE_MAX_PPM) {
+            sat = true;
+            ppm = PFE_GRADE_MAX_PPM;
+        }
+    }
+    if (saturated != NULL) {
+        *saturated = sat;
+    }
+    return negative ? -(int32_t)ppm : (int32_t)ppm;
+}
+
+/* ------------------------------------------------------------ PFE_PlatoonConfig */
+
+int pfe_codec_decode_platoon_config(const pfe_can_frame_t *frame, pfe_msg_platoon_config_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->n_vehicles = u32_na;
+    out->own_position = u32_na;
+    out->gap_mm = u32_na;
+    out->time_gap_ms = u32_na;
+    out->set_speed_mm_s = i32_na;
+    const int rc = check_frame(frame, PFE_MSG_PLATOON_CONFIG);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->n_vehicles = dec_u32(frame, PFE_CSIG_PC_NUMBER_OF_VEHICLES);       /* PFE_PlatoonConfig.NumberOfVehicles */
+    out->own_position = dec_u32(frame, PFE_CSIG_PC_OWN_POSITION);           /* PFE_PlatoonConfig.OwnPosition */
+    out->gap_mm = dec_u32_times(frame, PFE_CSIG_PC_GAP, 10U);               /* PFE_PlatoonConfig.Gap */
+    out->time_gap_ms = dec_u32(frame, PFE_CSIG_PC_TIME_GAP);                /* PFE_PlatoonConfig.TimeGap */
+    out->set_speed_mm_s = dec_speed(frame, PFE_CSIG_PC_SET_SPEED);          /* PFE_PlatoonConfig.SetSpeed */
+    if ((out->n_vehicles.state == PFE_SIG_VALID) && (out->own_position.state == PFE_SIG_VALID) &&
+        (out->own_position.value >= out->n_vehicles.value)) {
+        out->own_position = (pfe_sig_u32_t){0U, PFE_SIG_OUT_OF_RANGE};     /* no such position */
+    }
+    return PFE_OK;
+}
+
+int pfe_codec_encode_platoon_config(pfe_can_frame_t *frame, const pfe_msg_platoon_config_t *in,
+                                    uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) ||
+        (enc_begin(&e, frame, PFE_MSG_PLATOON_CONFIG, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_PC_NUMBER_OF_VEHICLES, in->n_vehicles.state, (int64_t)in->n_vehicles.value);
+    enc_put(&e, PFE_CSIG_PC_OWN_POSITION, in->own_position.state, (int64_t)in->own_position.value);
+    enc_put(&e, PFE_CSIG_PC_GAP, in->gap_mm.state, raw_of_unsigned(in->gap_mm.value, 10U));
+    enc_put(&e, PFE_CSIG_PC_TIME_GAP, in->time_gap_ms.state, (int64_t)in->time_gap_ms.value);
+    enc_put(&e, PFE_CSIG_PC_SET_SPEED, in->set_speed_mm_s.state,
+            raw_of_speed_mm_s(in->set_speed_mm_s.value));
+    return enc_end(&e);
+}
+
+pfe_sig_state_t pfe_codec_platoon_gap_mm(const pfe_msg_platoon_config_t *cfg, uint32_t *gap_mm)
+{
+    if (gap_mm == NULL) {
+        return PFE_SIG_NOT_AVAILABLE;
+    }
+    *gap_mm = 0U;
+    if (cfg == NULL) {
+        return PFE_SIG_NOT_AVAILABLE;
+    }
+    if (cfg->gap_mm.state == PFE_SIG_VALID) {
+        *gap_mm = cfg->gap_mm.value;
+        return PFE_SIG_VALID;
+    }
+    if ((cfg->time_gap_ms.state == PFE_SIG_VALID) && (cfg->set_speed_mm_s.state == PFE_SIG_VALID) &&
+        (cfg->set_speed_mm_s.value >= 0)) {
+        /* <= 64255 ms * 69723 mm/s: 64-bit */
+        *gap_mm = (uint32_t)pfe_udiv_round_u64(
+            (uint64_t)cfg->time_gap_ms.value * (uint64_t)cfg->set_speed_mm_s.value, 1000U);
+        return PFE_SIG_VALID;
+    }
+    return PFE_SIG_NOT_AVAILABLE;
+}
+
+/* ------------------------------------------------------------ PFE_GradePreview */
+
+int pfe_codec_decode_grade_preview(const pfe_can_frame_t *frame, pfe_msg_grade_preview_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->frame_type = u32_na;
+    out->preview_id = u32_na;
+    out->sample_count = u32_na;
+    out->spacing_m = u32_na;
+    out->first_index = u32_na;
+    for (uint32_t k = 0U; k < PFE_PREVIEW_SAMPLES_PER_FRAME; k++) {
+        out->grade_ppm[k] = i32_na;
+    }
+    const int rc = check_frame(frame, PFE_MSG_GRADE_PREVIEW);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->frame_type = dec_u32(frame, PFE_CSIG_GP_FRAME_TYPE);                 /* PFE_GradePreview.PreviewFrameType (M) */
+    out->preview_id = dec_u32(frame, PFE_CSIG_GP_PREVIEW_ID);                 /* PFE_GradePreview.PreviewId */
+    if (out->frame_type.state != PFE_SIG_VALID) {
+        return PFE_OK;
+    }
+    if (out->frame_type.value == PFE_PREVIEW_FRAME_HEADER) {
+        out->sample_count = dec_u32(frame, PFE_CSIG_GP_SAMPLE_COUNT);         /* PFE_GradePreview.SampleCount (m0) */
+        out->spacing_m = dec_u32(frame, PFE_CSIG_GP_SAMPLE_SPACING);          /* PFE_GradePreview.SampleSpacing (m0) */
+    } else {
+        out->first_index = dec_u32(frame, PFE_CSIG_GP_SAMPLE_INDEX);          /* PFE_GradePreview.SampleIndex (m1) */
+        out->grade_ppm[0] = dec_grade(frame, PFE_CSIG_GP_GRADE_SAMPLE0);      /* PFE_GradePreview.GradeSample0 (m1) */
+        out->grade_ppm[1] = dec_grade(frame, PFE_CSIG_GP_GRADE_SAMPLE1);      /* PFE_GradePreview.GradeSample1 (m1) */
+        out->grade_ppm[2] = dec_grade(frame, PFE_CSIG_GP_GRADE_SAMPLE2);      /* PFE_GradePreview.GradeSample2 (m1) */
+    }
+    return PFE_OK;
+}
+
+int pfe_codec_encode_grade_preview(pfe_can_frame_t *frame, const pfe_msg_grade_preview_t *in,
+                                   uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) || (in->frame_type.state != PFE_SIG_VALID) ||
+        (in->frame_type.value > PFE_PREVIEW_FRAME_DATA) ||
+        (enc_begin(&e, frame, PFE_MSG_GRADE_PREVIEW, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_GP_FRAME_TYPE, PFE_SIG_VALID, (int64_t)in->frame_type.value);
+    enc_put(&e, PFE_CSIG_GP_PREVIEW_ID, in->preview_id.state, (int64_t)in->preview_id.value);
+    if (in->frame_type.value == PFE_PREVIEW_FRAME_HEADER) {
+        enc_put(&e, PFE_CSIG_GP_SAMPLE_COUNT, in->sample_count.state, (int64_t)in->sample_count.value);
+        enc_put(&e, PFE_CSIG_GP_SAMPLE_SPACING, in->spacing_m.state, (int64_t)in->spacing_m.value);
+    } else {
+        enc_put(&e, PFE_CSIG_GP_SAMPLE_INDEX, in->first_index.state, (int64_t)in->first_index.value);
+        enc_put(&e, PFE_CSIG_GP_GRADE_SAMPLE0, in->grade_ppm[0].state, raw_of_grade_ppm(in->grade_ppm[0].value));
+        enc_put(&e, PFE_CSIG_GP_GRADE_SAMPLE1, in->grade_ppm[1].state, raw_of_grade_ppm(in->grade_ppm[1].value));
+        enc_put(&e, PFE_CSIG_GP_GRADE_SAMPLE2, in->grade_ppm[2].state, raw_of_grade_ppm(in->grade_ppm[2].value));
+    }
+    return enc_end(&e);
+}
+
+void pfe_preview_init(pfe_preview_t *pv)
+{
+    if (pv == NULL) {
+        return;
+    }
+    (void)memset(pv, 0, sizeof *pv);
+    pv->phase = PFE_PREVIEW_EMPTY;
+}
+
+/* A rejected frame drops a preview in progress; a complete one stays. */
+static int preview_reject(pfe_preview_t *pv, int rc)
+{
+    if (pv->phase == PFE_PREVIEW_RECEIVING) {
+        pv->phase = PFE_PREVIEW_EMPTY;
+    }
+    if (pv->frames_rejected < UINT32_MAX) {
+        pv->frames_rejected++;
+    }
+    return rc;
+}
+
+int pfe_preview_push(pfe_preview_t *pv, const pfe_can_frame_t *frame)
+{
+    if (pv == NULL) {
+        return PFE_EINVAL;
+    }
+    pfe_msg_grade_preview_t m;
+    const int rc = pfe_codec_decode_grade_preview(frame, &m);
+    if (rc != PFE_OK) {
+        return preview_reject(pv, rc);
+    }
+    if ((m.frame_type.state != PFE_SIG_VALID) || (m.preview_id.state != PFE_SIG_VALID)) {
+        return preview_reject(pv, PFE_PREVIEW_EFIELD);
+    }
+    if (m.frame_type.value == PFE_PREVIEW_FRAME_HEADER) {
+        if ((m.sample_count.state != PFE_SIG_VALID) || (m.spacing_m.state != PFE_SIG_VALID)) {
+            return preview_reject(pv, PFE_PREVIEW_ECOUNT);
+        }
+        const bool replaced = pv->phase != PFE_PREVIEW_EMPTY;
+        pv->phase = PFE_PREVIEW_RECEIVING;
+        pv->preview_id = (uint8_t)m.preview_id.value;
+        pv->sample_count = (uint16_t)m.sample_count.value;
+        pv->spacing_m = (uint8_t)m.spacing_m.value;
+        pv->next_index = 0U;
+        pv->unusable_samples = 0U;
+        return replaced ? PFE_PREVIEW_RESTARTED : PFE_PREVIEW_INCOMPLETE;
+    }
+    if ((pv->phase == PFE_PREVIEW_EMPTY) || (m.preview_id.value != pv->preview_id)) {
+        return preview_reject(pv, PFE_PREVIEW_ENOHEADER);
+    }
+    if (pv->phase == PFE_PREVIEW_READY) {
+        return preview_reject(pv, PFE_PREVIEW_EORDER); /* every sample is in: a repeat */
+    }
+    if ((m.first_index.state != PFE_SIG_VALID) || (m.first_index.value >= pv->sample_count)) {
+        return preview_reject(pv, PFE_PREVIEW_ECOUNT);
+    }
+    if (m.first_index.value > pv->next_index) {
+        return preview_reject(pv, PFE_PREVIEW_EGAP);
+    }
+    if (m.first_index.value < pv->next_index) {
+        return preview_reject(pv, PFE_PREVIEW_EORDER);
+    }
+    static const pfe_sig_index_t sample_sig[PFE_PREVIEW_SAMPLES_PER_FRAME] = {
+        PFE_CSIG_GP_GRADE_SAMPLE0, PFE_CSIG_GP_GRADE_SAMPLE1, PFE_CSIG_GP_GRADE_SAMPLE2};
+    uint32_t index = m.first_index.value;
+    for (uint32_t k = 0U; (k < PFE_PREVIEW_SAMPLES_PER_FRAME) && (index < pv->sample_count); k++) {
+        uint32_t raw;
+        if (get_raw(frame, sample_sig[k], &raw) != PFE_SIG_VALID) { /* PFE_GradePreview.GradeSampleN */
+            pv->unusable_samples++;
+        }
+        pv->raw[index] = (uint16_t)raw;
+        index++;
+    }
+    pv->next_index = (uint16_t)index;
+    if (index >= pv->sample_count) {
+        pv->phase = PFE_PREVIEW_READY;
+        return PFE_PREVIEW_COMPLETE;
+    }
+    return PFE_PREVIEW_INCOMPLETE;
+}
+
+pfe_sig_state_t pfe_preview_grade_ppm(const pfe_preview_t *pv, uint32_t index, int32_t *grade_ppm)
+{
+    if (grade_ppm != NULL) {
+        *grade_ppm = 0;
+    }
+    if ((pv == NULL) || (pv->phase != PFE_PREVIEW_READY) || (index >= pv->sample_count)) {
+        return PFE_SIG_NOT_AVAILABLE;
+    }
+    const uint32_t raw = pv->raw[index];
+    const pfe_sig_state_t st = pfe_codec_raw_state(&pfe_codec_signals[PFE_CSIG_GP_GRADE_SAMPLE0], raw);
+    if ((st == PFE_SIG_VALID) && (grade_ppm != NULL)) {
+        *grade_ppm = grade_ppm_of_raw(raw);
+    }
+    return st;
+}
+
+/* ------------------------------------------------------------ LFE1 */
+
+int pfe_codec_decode_lfe1(const pfe_can_frame_t *frame, pfe_msg_lfe1_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->fuel_rate_nl_s = u32_na;
+    const int rc = check_frame(frame, PFE_MSG_LFE1);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->fuel_rate_nl_s = dec_fuel_rate(frame, PFE_CSIG_LFE1_ENGINE_FUEL_RATE); /* LFE1.EngineFuelRate (SPN 183) */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_lfe1(pfe_can_frame_t *frame, const pfe_msg_lfe1_t *in, uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) || (enc_begin(&e, frame, PFE_MSG_LFE1, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_LFE1_ENGINE_FUEL_RATE, in->fuel_rate_nl_s.state,
+            raw_of_fuel_rate_nl_s(in->fuel_rate_nl_s.value));
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ PFE_PlatoonFuel */
+
+int pfe_codec_decode_platoon_fuel(const pfe_can_frame_t *frame, pfe_msg_platoon_fuel_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->fuel_rate_nl_s = u32_na;
+    out->fuel_used_ul = u64_na;
+    const int rc = check_frame(frame, PFE_MSG_PLATOON_FUEL);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->fuel_rate_nl_s = dec_fuel_rate(frame, PFE_CSIG_PF_PLATOON_FUEL_RATE);          /* PFE_PlatoonFuel.PlatoonFuelRate */
+    out->fuel_used_ul = dec_u64_times(frame, PFE_CSIG_PF_PLATOON_TOTAL_FUEL_USED, 1000U); /* PFE_PlatoonFuel.PlatoonTotalFuelUsed */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_platoon_fuel(pfe_can_frame_t *frame, const pfe_msg_platoon_fuel_t *in,
+                                  uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) ||
+        (enc_begin(&e, frame, PFE_MSG_PLATOON_FUEL, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_PF_PLATOON_FUEL_RATE, in->fuel_rate_nl_s.state,
+            raw_of_fuel_rate_nl_s(in->fuel_rate_nl_s.value));
+    enc_put(&e, PFE_CSIG_PF_PLATOON_TOTAL_FUEL_USED, in->fuel_used_ul.state,
+            raw_of_unsigned(in->fuel_used_ul.value, 1000U));
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ HRLFC */
+
+int pfe_codec_decode_hrlfc(const pfe_can_frame_t *frame, pfe_msg_hrlfc_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->trip_fuel_ul = u64_na;
+    out->total_fuel_ul = u64_na;
+    const int rc = check_frame(frame, PFE_MSG_HRLFC);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->trip_fuel_ul = dec_u64_times(frame, PFE_CSIG_HRLFC_TRIP_FUEL, 1000U);        /* HRLFC.HighResolutionEngineTripFuel (SPN 5053) */
+    out->total_fuel_ul = dec_u64_times(frame, PFE_CSIG_HRLFC_TOTAL_FUEL_USED, 1000U); /* HRLFC.HighResolutionEngineTotalFuelUsed (SPN 5054) */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_hrlfc(pfe_can_frame_t *frame, const pfe_msg_hrlfc_t *in, uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) || (enc_begin(&e, frame, PFE_MSG_HRLFC, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_HRLFC_TRIP_FUEL, in->trip_fuel_ul.state,
+            raw_of_unsigned(in->trip_fuel_ul.value, 1000U));
+    enc_put(&e, PFE_CSIG_HRLFC_TOTAL_FUEL_USED, in->total_fuel_ul.state,
+            raw_of_unsigned(in->total_fuel_ul.value, 1000U));
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ PFE_FuelPrediction */
+
+int pfe_codec_decode_fuel_prediction(const pfe_can_frame_t *frame, pfe_msg_fuel_prediction_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->fuel_ul = u32_na;
+    out->fuel_lower_ul = u32_na;
+    out->fuel_upper_ul = u32_na;
+    out->time_ms = u32_na;
+    const int rc = check_frame(frame, PFE_MSG_FUEL_PREDICTION);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->fuel_ul = dec_u32_times(frame, PFE_CSIG_FP_PREDICTED_FUEL, 10000U);             /* PFE_FuelPrediction.PredictedFuel */
+    out->fuel_lower_ul = dec_u32_times(frame, PFE_CSIG_FP_PREDICTED_FUEL_LOWER, 10000U); /* PFE_FuelPrediction.PredictedFuelLowerBound */
+    out->fuel_upper_ul = dec_u32_times(frame, PFE_CSIG_FP_PREDICTED_FUEL_UPPER, 10000U); /* PFE_FuelPrediction.PredictedFuelUpperBound */
+    out->time_ms = dec_u32_times(frame, PFE_CSIG_FP_PREDICTED_TIME, 100U);               /* PFE_FuelPrediction.PredictedTime */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_fuel_prediction(pfe_can_frame_t *frame, const pfe_msg_fuel_prediction_t *in,
+                                     uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) ||
+        (enc_begin(&e, frame, PFE_MSG_FUEL_PREDICTION, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_FP_PREDICTED_FUEL, in->fuel_ul.state, raw_of_unsigned(in->fuel_ul.value, 10000U));
+    enc_put(&e, PFE_CSIG_FP_PREDICTED_FUEL_LOWER, in->fuel_lower_ul.state,
+            raw_of_unsigned(in->fuel_lower_ul.value, 10000U));
+    enc_put(&e, PFE_CSIG_FP_PREDICTED_FUEL_UPPER, in->fuel_upper_ul.state,
+            raw_of_unsigned(in->fuel_upper_ul.value, 10000U));
+    enc_put(&e, PFE_CSIG_FP_PREDICTED_TIME, in->time_ms.state, raw_of_unsigned(in->time_ms.value, 100U));
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ PFE_Status */
+
+static pfe_sig_state_t input_state_of_code(uint32_t code)
+{
+    switch (code) {
+    case PFE_STATUS_INPUT_VALID:
+        return PFE_SIG_VALID;
+    case PFE_STATUS_INPUT_OUT_OF_RANGE:
+        return PFE_SIG_OUT_OF_RANGE;
+    case PFE_STATUS_INPUT_ERROR:
+        return PFE_SIG_ERROR;
+    default:
+        return PFE_SIG_NOT_AVAILABLE;
+    }
+}
+
+/* UINT32_MAX for a value outside the enumeration. */
+static uint32_t code_of_input_state(pfe_sig_state_t state)
+{
+    switch (state) {
+    case PFE_SIG_VALID:
+        return PFE_STATUS_INPUT_VALID;
+    case PFE_SIG_OUT_OF_RANGE:
+        return PFE_STATUS_INPUT_OUT_OF_RANGE;
+    case PFE_SIG_ERROR:
+        return PFE_STATUS_INPUT_ERROR;
+    case PFE_SIG_NOT_AVAILABLE:
+        return PFE_STATUS_INPUT_NOT_AVAILABLE;
+    default:
+        return UINT32_MAX;
+    }
+}
+
+static pfe_sig_state_t dec_input_state(const pfe_can_frame_t *frame, pfe_sig_index_t i)
+{
+    return input_state_of_code(pfe_codec_raw_get(frame->data, &pfe_codec_signals[i]));
+}
+
+int pfe_codec_decode_status(const pfe_can_frame_t *frame, pfe_msg_status_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->speed_input = PFE_SIG_NOT_AVAILABLE;
+    out->grade_input = PFE_SIG_NOT_AVAILABLE;
+    out->platoon_config_input = PFE_SIG_NOT_AVAILABLE;
+    out->grade_preview_input = PFE_SIG_NOT_AVAILABLE;
+    out->mode = u32_na;
+    out->rx_frames_dropped = u32_na;
+    out->tick_overruns = u32_na;
+    out->tx_frames_dropped = u32_na;
+    out->warming_up = u32_na;
+    out->speed_clamped = u32_na;
+    out->grade_clamped = u32_na;
+    out->output_saturated = u32_na;
+    const int rc = check_frame(frame, PFE_MSG_STATUS);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->speed_input = dec_input_state(frame, PFE_CSIG_ST_SPEED_INPUT);                   /* PFE_Status.SpeedInputState */
+    out->grade_input = dec_input_state(frame, PFE_CSIG_ST_GRADE_INPUT);                   /* PFE_Status.GradeInputState */
+    out->platoon_config_input = dec_input_state(frame, PFE_CSIG_ST_PLATOON_CONFIG_INPUT); /* PFE_Status.PlatoonConfigInputState */
+    out->grade_preview_input = dec_input_state(frame, PFE_CSIG_ST_GRADE_PREVIEW_INPUT);   /* PFE_Status.GradePreviewInputState */
+    out->mode = dec_u32(frame, PFE_CSIG_ST_DEGRADED_MODE);                                /* PFE_Status.DegradedMode */
+    out->rx_frames_dropped = dec_u32(frame, PFE_CSIG_ST_RX_FRAMES_DROPPED);               /* PFE_Status.RxFramesDropped */
+    out->tick_overruns = dec_u32(frame, PFE_CSIG_ST_TICK_OVERRUNS);                       /* PFE_Status.TickOverruns */
+    out->tx_frames_dropped = dec_u32(frame, PFE_CSIG_ST_TX_FRAMES_DROPPED);               /* PFE_Status.TxFramesDropped */
+    out->warming_up = dec_u32(frame, PFE_CSIG_ST_WARMING_UP);                             /* PFE_Status.WarmingUp */
+    out->speed_clamped = dec_u32(frame, PFE_CSIG_ST_SPEED_CLAMPED);                       /* PFE_Status.SpeedClamped */
+    out->grade_clamped = dec_u32(frame, PFE_CSIG_ST_GRADE_CLAMPED);                       /* PFE_Status.GradeClamped */
+    out->output_saturated = dec_u32(frame, PFE_CSIG_ST_OUTPUT_SATURATED);                 /* PFE_Status.OutputSaturated */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_status(pfe_can_frame_t *frame, const pfe_msg_status_t *in, uint8_t source)
+{
+    enc_t e;
+    if (in == NULL) {
+        return PFE_EINVAL;
+    }
+    const uint32_t codes[4] = {
+        code_of_input_state(in->speed_input), code_of_input_state(in->grade_input),
+        code_of_input_state(in->platoon_config_input), code_of_input_state(in->grade_preview_input)};
+    for (uint32_t k = 0U; k < 4U; k++) {
+        if (codes[k] == UINT32_MAX) {
+            return PFE_EINVAL;
+        }
+    }
+    if (enc_begin(&e, frame, PFE_MSG_STATUS, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_ST_SPEED_INPUT, PFE_SIG_VALID, (int64_t)codes[0]);
+    enc_put(&e, PFE_CSIG_ST_GRADE_INPUT, PFE_SIG_VALID, (int64_t)codes[1]);
+    enc_put(&e, PFE_CSIG_ST_PLATOON_CONFIG_INPUT, PFE_SIG_VALID, (int64_t)codes[2]);
+    enc_put(&e, PFE_CSIG_ST_GRADE_PREVIEW_INPUT, PFE_SIG_VALID, (int64_t)codes[3]);
+    enc_put(&e, PFE_CSIG_ST_DEGRADED_MODE, in->mode.state, (int64_t)in->mode.value);
+    enc_put(&e, PFE_CSIG_ST_RX_FRAMES_DROPPED, in->rx_frames_dropped.state,
+            (int64_t)in->rx_frames_dropped.value);
+    enc_put(&e, PFE_CSIG_ST_TICK_OVERRUNS, in->tick_overruns.state, (int64_t)in->tick_overruns.value);
+    enc_put(&e, PFE_CSIG_ST_TX_FRAMES_DROPPED, in->tx_frames_dropped.state,
+            (int64_t)in->tx_frames_dropped.value);
+    enc_put(&e, PFE_CSIG_ST_WARMING_UP, in->warming_up.state, (int64_t)in->warming_up.value);
+    enc_put(&e, PFE_CSIG_ST_SPEED_CLAMPED, in->speed_clamped.state, (int64_t)in->speed_clamped.value);
+    enc_put(&e, PFE_CSIG_ST_GRADE_CLAMPED, in->grade_clamped.state, (int64_t)in->grade_clamped.value);
+    enc_put(&e, PFE_CSIG_ST_OUTPUT_SATURATED, in->output_saturated.state,
+            (int64_t)in->output_saturated.value);
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ NAME, AddressClaimed */
+
+int pfe_j1939_name_pack(const pfe_j1939_name_t *name, uint64_t *out)
+{
+    if ((name == NULL) || (out == NULL)) {
+        return PFE_EINVAL;
+    }
+    if ((name->identity_number > 0x1FFFFFUL) || (name->manufacturer_code > 0x7FFU) ||
+        (name->ecu_instance > 7U) || (name->function_instance > 31U) || (name->reserved > 1U) ||
+        (name->vehicle_system > 127U) || (name->vehicle_system_instance > 15U) ||
+        (name->industry_group > 7U)) {
+        return PFE_EINVAL;
+    }
+    *out = (uint64_t)name->identity_number | ((uint64_t)name->manufacturer_code << 21) |
+           ((uint64_t)name->ecu_instance << 32) | ((uint64_t)name->function_instance << 35) |
+           ((uint64_t)name->function << 40) | ((uint64_t)name->reserved << 48) |
+           ((uint64_t)name->vehicle_system << 49) | ((uint64_t)name->vehicle_system_instance << 56) |
+           ((uint64_t)name->industry_group << 60) |
+           ((uint64_t)(name->arbitrary_address_capable ? 1U : 0U) << 63);
+    return PFE_OK;
+}
+
+void pfe_j1939_name_unpack(uint64_t value, pfe_j1939_name_t *out)
+{
+    if (out == NULL) {
+        return;
+    }
+    out->identity_number = (uint32_t)(value & 0x1FFFFFU);
+    out->manufacturer_code = (uint16_t)((value >> 21) & 0x7FFU);
+    out->ecu_instance = (uint8_t)((value >> 32) & 7U);
+    out->function_instance = (uint8_t)((value >> 35) & 31U);
+    out->function = (uint8_t)((value >> 40) & 0xFFU);
+    out->reserved = (uint8_t)((value >> 48) & 1U);
+    out->vehicle_system = (uint8_t)((value >> 49) & 127U);
+    out->vehicle_system_instance = (uint8_t)((value >> 56) & 15U);
+    out->industry_group = (uint8_t)((value >> 60) & 7U);
+    out->arbitrary_address_capable = ((value >> 63) & 1U) != 0U;
+}
+
+int pfe_codec_encode_address_claimed(pfe_can_frame_t *frame, const pfe_j1939_name_t *name,
+                                     uint8_t source)
+{
+    uint64_t packed;
+    enc_t e;
+    if ((pfe_j1939_name_pack(name, &packed) != PFE_OK) ||
+        (enc_begin(&e, frame, PFE_MSG_ADDRESS_CLAIMED, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_AC_IDENTITY_NUMBER, PFE_SIG_VALID, (int64_t)name->identity_number);
+    enc_put(&e, PFE_CSIG_AC_MANUFACTURER_CODE, PFE_SIG_VALID, (int64_t)name->manufacturer_code);
+    enc_put(&e, PFE_CSIG_AC_ECU_INSTANCE, PFE_SIG_VALID, (int64_t)name->ecu_instance);
+    enc_put(&e, PFE_CSIG_AC_FUNCTION_INSTANCE, PFE_SIG_VALID, (int64_t)name->function_instance);
+    enc_put(&e, PFE_CSIG_AC_FUNCTION, PFE_SIG_VALID, (int64_t)name->function);
+    enc_put(&e, PFE_CSIG_AC_RESERVED, PFE_SIG_VALID, (int64_t)name->reserved);
+    enc_put(&e, PFE_CSIG_AC_VEHICLE_SYSTEM, PFE_SIG_VALID, (int64_t)name->vehicle_system);
+    enc_put(&e, PFE_CSIG_AC_VEHICLE_SYSTEM_INSTANCE, PFE_SIG_VALID, (int64_t)name->vehicle_system_instance);
+    enc_put(&e, PFE_CSIG_AC_INDUSTRY_GROUP, PFE_SIG_VALID, (int64_t)name->industry_group);
+    enc_put(&e, PFE_CSIG_AC_ARBITRARY_ADDRESS_CAPABLE, PFE_SIG_VALID,
+            name->arbitrary_address_capable ? 1 : 0);
+    return enc_end(&e); /* fields were checked by the pack: never clamps */
+}
+
+static uint8_t dec_field8(const pfe_can_frame_t *frame, pfe_sig_index_t i)
+{
+    return (uint8_t)pfe_codec_raw_get(frame->data, &pfe_codec_signals[i]);
+}
+
+int pfe_codec_decode_address_claimed(const pfe_can_frame_t *frame, pfe_j1939_name_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    (void)memset(out, 0, sizeof *out);
+    const int rc = check_frame(frame, PFE_MSG_ADDRESS_CLAIMED);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->identity_number = pfe_codec_raw_get(frame->data, &pfe_codec_signals[PFE_CSIG_AC_IDENTITY_NUMBER]); /* AddressClaimed.IdentityNumber (SPN 2837) */
+    out->manufacturer_code = (uint16_t)pfe_codec_raw_get(frame->data, &pfe_codec_signals[PFE_CSIG_AC_MANUFACTURER_CODE]); /* AddressClaimed.ManufacturerCode (SPN 2838) */
+    out->ecu_instance = dec_field8(frame, PFE_CSIG_AC_ECU_INSTANCE);                       /* AddressClaimed.EcuInstance (SPN 2840) */
+    out->function_instance = dec_field8(frame, PFE_CSIG_AC_FUNCTION_INSTANCE);             /* AddressClaimed.FunctionInstance (SPN 2839) */
+    out->function = dec_field8(frame, PFE_CSIG_AC_FUNCTION);                               /* AddressClaimed.Function (SPN 2841) */
+    out->reserved = dec_field8(frame, PFE_CSIG_AC_RESERVED);                               /* AddressClaimed.NameReserved */
+    out->vehicle_system = dec_field8(frame, PFE_CSIG_AC_VEHICLE_SYSTEM);                   /* AddressClaimed.VehicleSystem (SPN 2842) */
+    out->vehicle_system_instance = dec_field8(frame, PFE_CSIG_AC_VEHICLE_SYSTEM_INSTANCE); /* AddressClaimed.VehicleSystemInstance (SPN 2843) */
+    out->industry_group = dec_field8(frame, PFE_CSIG_AC_INDUSTRY_GROUP);                   /* AddressClaimed.IndustryGroup (SPN 2846) */
+    out->arbitrary_address_capable = dec_field8(frame, PFE_CSIG_AC_ARBITRARY_ADDRESS_CAPABLE) != 0U; /* AddressClaimed.ArbitraryAddressCapable (SPN 2844) */
+    return PFE_OK;
+}
+
+/* ------------------------------------------------------------ Request */
+
+int pfe_codec_decode_request(const pfe_can_frame_t *frame, pfe_msg_request_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->pgn = u32_na;
+    out->destination = PFE_J1939_ADDR_GLOBAL;
+    out->source = PFE_J1939_ADDR_NULL;
+    const int rc = check_frame(frame, PFE_MSG_REQUEST);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->pgn = dec_u32(frame, PFE_CSIG_RQST_REQUESTED_PGN); /* Request.RequestedPGN (SPN 2540) */
+    out->destination = pfe_j1939_destination(frame->id);
+    out->source = pfe_j1939_source(frame->id);
+    return PFE_OK;
+}
+
+int pfe_codec_encode_request(pfe_can_frame_t *frame, uint32_t pgn, uint8_t destination,
+                             uint8_t source)
+{
+    enc_t e;
+    if ((pgn > 0x3FFFFUL) ||
+        (enc_begin(&e, frame, PFE_MSG_REQUEST, destination, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_RQST_REQUESTED_PGN, PFE_SIG_VALID, (int64_t)pgn);
+    return enc_end(&e);
+}

@@ -1,0 +1,154 @@
+/*
+ * pfe_ecu.h - the module as a J1939 ECU: the 10 ms loop.
+ *
+ * Portable and I/O-free: a HAL-side main loop moves frames and time in and
+ * out. Every 10 ms tick it
+ *   1. drains the bounded receive queue (frames queued by pfe_ecu_receive()),
+ *      matching J1939 PGNs with priority and source address masked, and
+ *      decodes and validates each input (range, not available, error);
+ *   2. ages the inputs: a message older than three of its periods makes its
+ *      inputs not available (PFE_ECU_STALE_PERIODS);
+ *   3. steps the estimator (pfe_estimator.h);
+ *   4. sends each output on its J1939 schedule (can_dbc/pfe.dbc), plus the
+ *      answers to requests (PGN 59904) and the address claim (J1939-81).
+ * The main loop reports what it saw go wrong (ticks overrun, frames it could
+ * not send or that the bus dropped); the status message carries it.
+ *
+ * Total fuel used survives a reset through two NVM slots (pfe_nvm.h): the
+ * main loop reads them before pfe_ecu_init(), and writes
+ * pfe_ecu_nvm_take() to pfe_ecu_nvm_slot() whenever pfe_ecu_nvm_due().
+ *
+ * Time: microseconds of one monotonic clock, passed in; frames carry their
+ * receive time on the same clock. Memory: all in pfe_ecu_t (caller owned).
+ */
+#ifndef PFE_ECU_H
+#define PFE_ECU_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "pfe_calib.h"
+#include "pfe_can.h"
+#include "pfe_codec.h"
+#include "pfe_estimator.h"
+#include "pfe_nvm.h"
+#include "pfe_platoon.h"
+
+#define PFE_ECU_TICK_US 10000U
+#define PFE_ECU_RX_QUEUE_LEN 64U       /* frames between two ticks; more are dropped and counted */
+#define PFE_ECU_TX_MAX 16U             /* frames one tick may send at most */
+#define PFE_ECU_STALE_PERIODS 3U
+#define PFE_ECU_CLAIM_WAIT_US 250000U  /* J1939-81: wait after claiming before sending */
+#define PFE_ECU_DEFAULT_ADDRESS 0x8CU
+
+/* What the module is and how it starts. */
+typedef struct {
+    uint8_t preferred_address;         /* source address claimed at start-up */
+    uint64_t name;                     /* J1939 NAME (pfe_codec_name_encode()); bit 63: arbitrary address capable */
+    uint32_t save_interval_ms;         /* NVM save period, 1000 .. 3600000 */
+    const pfe_vehicle_calib_t *vehicle;/* calibration of every truck */
+    const pfe_env_calib_t *env;
+    const pfe_drag_table_t *drag;
+    /* Platoon until a PFE_PlatoonConfig arrives (the module then runs degraded). */
+    uint32_t default_vehicles;
+    uint32_t default_position;
+    uint32_t default_gap_mm;
+} pfe_ecu_config_t;
+
+/* Input states in PFE_Status (can_dbc/pfe.dbc VAL_). */
+typedef enum {
+    PFE_ECU_ADDR_CLAIMING = 0,         /* claim sent, waiting PFE_ECU_CLAIM_WAIT_US */
+    PFE_ECU_ADDR_CLAIMED = 1,
+    PFE_ECU_ADDR_LOST = 2,             /* cannot claim: silent but for "cannot claim" */
+} pfe_ecu_addr_state_t;
+
+/* One input message: its last decoded state, whether it is new, and when it
+ * came (NOT_AVAILABLE also when it never came or is older than
+ * PFE_ECU_STALE_PERIODS periods). */
+typedef struct {
+    pfe_sig_state_t state;
+    bool fresh;                        /* a new value since the last tick */
+    uint64_t rx_us;                    /* receive time of the last frame */
+    bool seen;
+} pfe_ecu_input_t;
+
+/* Counters that only count up (saturating). */
+typedef struct {
+    uint32_t rx_frames;
+    uint32_t rx_dropped;               /* receive queue full, or reported by the HAL */
+    uint32_t rx_rejected;              /* wrong length, unknown PGN */
+    uint32_t tx_frames;
+    uint32_t tx_dropped;               /* reported by the main loop */
+    uint32_t overruns;                 /* ticks the main loop reported late */
+    uint32_t requests_answered;
+    uint32_t claims_lost;
+} pfe_ecu_counters_t;
+
+typedef struct {
+    pfe_ecu_config_t cfg;
+    /* receive queue */
+    pfe_can_frame_t rxq[PFE_ECU_RX_QUEUE_LEN];
+    uint64_t rxq_us[PFE_ECU_RX_QUEUE_LEN];
+    uint32_t rxq_head;
+    uint32_t rxq_count;
+    /* network management */
+    pfe_ecu_addr_state_t addr_state;
+    uint8_t address;
+    uint64_t claim_us;
+    bool claim_pending;                /* send our Address Claimed on the next tick */
+    uint32_t request_pending;          /* bit per output message asked for by a request */
+    bool cannot_claim_pending;         /* answer with "cannot claim" (source 254) */
+    /* inputs */
+    pfe_ecu_input_t speed, grade, config, preview;
+    int32_t speed_mm_s;
+    int32_t grade_ppm;
+    pfe_msg_platoon_config_t platoon_msg;
+    pfe_preview_t preview_buf;
+    /* model */
+    pfe_platoon_t platoon;
+    pfe_estimator_t est;
+    uint32_t own_position;
+    bool degraded;                     /* running on the default platoon */
+    const pfe_est_output_t *out;
+    /* schedule and time */
+    uint64_t now_us;
+    uint32_t tick;
+    uint64_t last_save_us;
+    uint32_t nvm_sequence;
+    int nvm_last_slot;
+    pfe_ecu_counters_t count;
+} pfe_ecu_t;
+
+/*
+ * Starts the ECU at now_us: claims cfg->preferred_address, restores fuel
+ * totals from `restored` (NULL or the result of pfe_nvm_pick(), whose slot
+ * index is restored_slot, -1 for none). Returns PFE_OK or PFE_EINVAL.
+ */
+int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_state_t *restored,
+                 int restored_slot, uint64_t now_us);
+
+/* Queues one received frame for the next tick. O(1); a full queue drops the
+ * frame and counts it. */
+void pfe_ecu_receive(pfe_ecu_t *ecu, const pfe_can_frame_t *frame, uint64_t rx_us);
+
+/* One tick at now_us (call every PFE_ECU_TICK_US). Writes the frames to send
+ * into tx (at most tx_cap, PFE_ECU_TX_MAX is always enough) and returns how
+ * many. */
+uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint32_t tx_cap);
+
+/* Reports from the main loop. */
+void pfe_ecu_note_overrun(pfe_ecu_t *ecu, uint32_t ticks);
+void pfe_ecu_note_tx_dropped(pfe_ecu_t *ecu, uint32_t frames);
+void pfe_ecu_note_rx_dropped(pfe_ecu_t *ecu, uint32_t frames);
+
+/* NVM: due once per save interval. pfe_ecu_nvm_take() fills the record to
+ * write to pfe_ecu_nvm_slot() and restarts the interval. */
+bool pfe_ecu_nvm_due(const pfe_ecu_t *ecu);
+uint32_t pfe_ecu_nvm_slot(const pfe_ecu_t *ecu);
+void pfe_ecu_nvm_take(pfe_ecu_t *ecu, pfe_nvm_state_t *out);
+
+/* Fuel used so far, uL: own vehicle and platoon. */
+uint64_t pfe_ecu_own_fuel_ul(const pfe_ecu_t *ecu);
+uint64_t pfe_ecu_platoon_fuel_ul(const pfe_ecu_t *ecu);
+
+#endif /* PFE_ECU_H */

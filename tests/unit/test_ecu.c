@@ -1,0 +1,443 @@
+/*
+ * Unit tests: the J1939 ECU loop (pfe_ecu) driven tick by tick, frames built
+ * with the codec, NVM on the test backend (hal/fake). Times are in us.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "hal/fake/hal_fake.h"
+#include "pfe_calib.h"
+#include "pfe_can.h"
+#include "pfe_codec.h"
+#include "pfe_ecu.h"
+#include "pfe_fixed.h"
+#include "pfe_nvm.h"
+
+#define OTHER_SA 0x00U
+#define OUR_NAME 0x80A0000012345678ULL /* arbitrary address capable */
+
+static pfe_ecu_t g_ecu;
+static uint64_t g_now;
+static pfe_can_frame_t g_tx[PFE_ECU_TX_MAX];
+static uint32_t g_ntx;
+
+static pfe_ecu_config_t config(void)
+{
+    const pfe_ecu_config_t c = {PFE_ECU_DEFAULT_ADDRESS, OUR_NAME, 1000U, &pfe_default_vehicle,
+                                &pfe_default_env, &pfe_default_drag, 1U, 0U, 10000U};
+    return c;
+}
+
+static void start(const pfe_ecu_config_t *c, const pfe_nvm_state_t *restored, int slot)
+{
+    g_now = 1000000U;
+    memset(&g_ecu, 0xA5, sizeof g_ecu);
+    assert_int_equal(pfe_ecu_init(&g_ecu, c, restored, slot, g_now), PFE_OK);
+}
+
+static void send_speed(int32_t speed_mm_s, pfe_sig_state_t st)
+{
+    pfe_can_frame_t f;
+    const pfe_msg_ccvs1_t m = {{speed_mm_s, st}};
+    assert_true(pfe_codec_encode_ccvs1(&f, &m, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+}
+
+static void send_pitch(int32_t pitch_udeg)
+{
+    pfe_can_frame_t f;
+    const pfe_msg_ssi_t m = {{pitch_udeg, PFE_SIG_VALID}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_ssi(&f, &m, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+}
+
+/* One tick; speed every 100 ms and pitch every 10 ms when asked. */
+static void tick(bool speed, bool pitch)
+{
+    if (speed && ((g_now / 10000U) % 10U == 0U)) {
+        send_speed(25000, PFE_SIG_VALID);
+    }
+    if (pitch) {
+        send_pitch(0);
+    }
+    g_ntx = pfe_ecu_tick(&g_ecu, g_now, g_tx, PFE_ECU_TX_MAX);
+    g_now += PFE_ECU_TICK_US;
+}
+
+static const pfe_can_frame_t *sent(uint32_t pgn)
+{
+    for (uint32_t k = 0U; k < g_ntx; k++) {
+        if (pfe_j1939_pgn(g_tx[k].id) == pgn) {
+            return &g_tx[k];
+        }
+    }
+    return NULL;
+}
+
+static void test_claims_address_then_keeps_schedule(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    tick(true, true);
+    const pfe_can_frame_t *claim = sent(PFE_PGN_ADDRESS_CLAIMED);
+    assert_non_null(claim);
+    assert_int_equal(claim->id, 0x98EEFF8CUL); /* prio 6, PGN 0xEE00 to global, SA 0x8C */
+    static const uint8_t name_bytes[8] = {0x78, 0x56, 0x34, 0x12, 0x00, 0x00, 0xA0, 0x80};
+    assert_memory_equal(claim->data, name_bytes, 8);
+    assert_int_equal(g_ntx, 1);
+    /* Nothing else for 250 ms. */
+    for (uint32_t k = 1U; k < 25U; k++) {
+        tick(true, true);
+        assert_int_equal(g_ntx, 0);
+    }
+    uint32_t lfe1 = 0U, pf = 0U, hrlfc = 0U, pred = 0U, status = 0U;
+    for (uint32_t k = 0U; k < 1000U; k++) { /* 10 s */
+        tick(true, true);
+        assert_true(g_ntx <= 2U);
+        lfe1 += (sent(PFE_PGN_LFE1) != NULL) ? 1U : 0U;
+        pf += (sent(PFE_PGN_PLATOON_FUEL) != NULL) ? 1U : 0U;
+        hrlfc += (sent(PFE_PGN_HRLFC) != NULL) ? 1U : 0U;
+        pred += (sent(PFE_PGN_FUEL_PREDICTION) != NULL) ? 1U : 0U;
+        status += (sent(PFE_PGN_STATUS) != NULL) ? 1U : 0U;
+    }
+    assert_int_equal(lfe1, 100);
+    assert_int_equal(pf, 100);
+    assert_int_equal(hrlfc, 10);
+    assert_int_equal(pred, 10);
+    assert_int_equal(status, 10);
+}
+
+/* Runs until an LFE1 goes out and decodes it. */
+static pfe_msg_lfe1_t next_lfe1(bool speed, bool pitch)
+{
+    for (uint32_t k = 0U; k < 20U; k++) {
+        tick(speed, pitch);
+        const pfe_can_frame_t *f = sent(PFE_PGN_LFE1);
+        if (f != NULL) {
+            pfe_msg_lfe1_t m;
+            assert_true(pfe_codec_decode_lfe1(f, &m) >= 0);
+            return m;
+        }
+    }
+    fail_msg("no LFE1 within 200 ms");
+    const pfe_msg_lfe1_t none = {{0U, PFE_SIG_ERROR}};
+    return none;
+}
+
+static pfe_msg_status_t next_status(bool speed, bool pitch)
+{
+    for (uint32_t k = 0U; k < 110U; k++) {
+        tick(speed, pitch);
+        const pfe_can_frame_t *f = sent(PFE_PGN_STATUS);
+        if (f != NULL) {
+            pfe_msg_status_t m;
+            assert_true(pfe_codec_decode_status(f, &m) >= 0);
+            return m;
+        }
+    }
+    fail_msg("no status within 1.1 s");
+    pfe_msg_status_t none;
+    memset(&none, 0, sizeof none);
+    return none;
+}
+
+static void test_fuel_rate_on_flat_road(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < 100U; k++) {
+        tick(true, true);
+    }
+    const pfe_msg_lfe1_t m = next_lfe1(true, true);
+    assert_int_equal(m.fuel_rate_nl_s.state, PFE_SIG_VALID);
+    /* 9.298 mL/s = 33.47 L/h: raw 669 or 670 of 0.05 L/h, decoded back to nL/s. */
+    assert_in_range(m.fuel_rate_nl_s.value, 9291666U, 9305556U);
+    const pfe_msg_status_t st = next_status(true, true);
+    assert_int_equal(st.speed_input, PFE_SIG_VALID);
+    assert_int_equal(st.grade_input, PFE_SIG_VALID);
+    assert_int_equal(st.platoon_config_input, PFE_SIG_NOT_AVAILABLE);
+    assert_int_equal(st.mode.value, PFE_MODE_DEGRADED);
+}
+
+static void test_speed_timeout_within_three_periods_and_recovery(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < 100U; k++) {
+        tick(true, true);
+    }
+    /* Last CCVS1 at this tick; then none. */
+    while ((g_now / 10000U) % 10U != 0U) {
+        tick(true, true);
+    }
+    const uint64_t last_rx = g_now;
+    tick(true, true);
+    uint64_t na_at = 0U;
+    for (uint32_t k = 0U; (k < 100U) && (na_at == 0U); k++) {
+        const uint64_t t = g_now;
+        tick(false, true);
+        if ((g_ecu.out->flags & PFE_EST_VALID) == 0U) {
+            na_at = t;
+        }
+    }
+    assert_true(na_at > last_rx);
+    /* Three periods plus one tick. */
+    assert_true((na_at - last_rx) <= (300000U + PFE_ECU_TICK_US));
+    assert_int_equal(next_lfe1(false, true).fuel_rate_nl_s.state, PFE_SIG_NOT_AVAILABLE);
+    pfe_msg_status_t st = next_status(false, true);
+    assert_int_equal(st.speed_input, PFE_SIG_NOT_AVAILABLE);
+    assert_int_equal(st.mode.value, PFE_MODE_NO_ESTIMATE);
+    /* Back: valid again after the filter's warm-up (5 samples). */
+    for (uint32_t k = 0U; k < 60U; k++) {
+        tick(true, true);
+    }
+    assert_int_equal(next_lfe1(true, true).fuel_rate_nl_s.state, PFE_SIG_VALID);
+}
+
+static void test_grade_timeout_and_sender_error_values(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < 100U; k++) {
+        tick(true, true);
+    }
+    /* SSI stops: 3 x 10 ms, plus one tick. */
+    tick(true, false);
+    tick(true, false);
+    tick(true, false);
+    assert_true((g_ecu.out->flags & PFE_EST_VALID) != 0U);
+    tick(true, false);
+    assert_true((g_ecu.out->flags & PFE_EST_GRADE_MISSING) != 0U);
+    pfe_msg_status_t st = next_status(true, false);
+    assert_int_equal(st.grade_input, PFE_SIG_NOT_AVAILABLE);
+    /* The sender reports an error in SPN 84: error, no estimate. */
+    for (uint32_t k = 0U; k < 50U; k++) {
+        if ((g_now / 10000U) % 10U == 0U) {
+            send_speed(0, PFE_SIG_ERROR);
+        }
+        tick(false, true);
+    }
+    assert_true((g_ecu.out->flags & PFE_EST_VALID) == 0U);
+    assert_int_equal(g_ecu.speed.state, PFE_SIG_ERROR);
+    /* Out of range (parameter-specific raw 0xFB00): out of range. */
+    pfe_can_frame_t f;
+    const pfe_msg_ccvs1_t m = {{25000, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_ccvs1(&f, &m, OTHER_SA) >= 0);
+    f.data[1] = 0x00U;
+    f.data[2] = 0xFBU;
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    tick(false, true);
+    assert_int_equal(g_ecu.speed.state, PFE_SIG_OUT_OF_RANGE);
+    assert_true((g_ecu.out->flags & PFE_EST_VALID) == 0U);
+}
+
+static void test_requests(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < 30U; k++) {
+        tick(true, true);
+    }
+    while ((g_now / 10000U) % 100U != 50U) {
+        tick(true, true);
+    }
+    pfe_can_frame_t f;
+    assert_true(pfe_codec_encode_request(&f, PFE_PGN_HRLFC, PFE_J1939_ADDR_GLOBAL, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    tick(true, true);
+    assert_non_null(sent(PFE_PGN_HRLFC));
+    /* Addressed to someone else: ignored. */
+    assert_true(pfe_codec_encode_request(&f, PFE_PGN_HRLFC, 0x33U, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    tick(true, true);
+    assert_null(sent(PFE_PGN_HRLFC));
+    /* Addressed to us, for the address claim. */
+    assert_true(pfe_codec_encode_request(&f, PFE_PGN_ADDRESS_CLAIMED, PFE_ECU_DEFAULT_ADDRESS,
+                                         OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    tick(true, true);
+    assert_non_null(sent(PFE_PGN_ADDRESS_CLAIMED));
+    assert_int_equal(g_ecu.count.requests_answered, 2);
+}
+
+static void claim_from_other(uint64_t name_value)
+{
+    pfe_j1939_name_t name;
+    pfe_j1939_name_unpack(name_value, &name);
+    pfe_can_frame_t f;
+    assert_true(pfe_codec_encode_address_claimed(&f, &name, PFE_ECU_DEFAULT_ADDRESS) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+}
+
+static void test_address_claim_conflicts(void **state)
+{
+    (void)state;
+    pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    tick(true, true);
+    /* A higher NAME claims our address: we keep it and say so again. */
+    claim_from_other(OUR_NAME + 1U);
+    tick(true, true);
+    assert_int_equal(pfe_j1939_source(sent(PFE_PGN_ADDRESS_CLAIMED)->id), 0x8C);
+    /* A lower NAME: we are arbitrary address capable, so we move to the next
+     * self-configurable address (128 .. 247). */
+    claim_from_other(0x0000000000000001ULL);
+    tick(true, true);
+    assert_int_equal(pfe_j1939_source(sent(PFE_PGN_ADDRESS_CLAIMED)->id), 0x8D);
+    for (uint32_t k = 0U; k < 40U; k++) {
+        tick(true, true);
+    }
+    assert_int_equal(g_ecu.addr_state, PFE_ECU_ADDR_CLAIMED);
+
+    /* Not arbitrary address capable: cannot claim, then silence. */
+    c.name = OUR_NAME & ~(1ULL << 63);
+    start(&c, NULL, -1);
+    tick(true, true);
+    claim_from_other(0x0000000000000001ULL);
+    tick(true, true);
+    const pfe_can_frame_t *cc = sent(PFE_PGN_ADDRESS_CLAIMED);
+    assert_non_null(cc);
+    assert_int_equal(pfe_j1939_source(cc->id), PFE_J1939_ADDR_NULL);
+    for (uint32_t k = 0U; k < 200U; k++) {
+        tick(true, true);
+        assert_int_equal(g_ntx, 0);
+    }
+    assert_int_equal(g_ecu.addr_state, PFE_ECU_ADDR_LOST);
+}
+
+static void test_counters_reach_the_status_message(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < 30U; k++) {
+        tick(true, true);
+    }
+    for (uint32_t k = 0U; k < PFE_ECU_RX_QUEUE_LEN + 6U; k++) {
+        send_pitch(0);
+    }
+    tick(false, false);
+    pfe_ecu_note_overrun(&g_ecu, 3U);
+    pfe_ecu_note_tx_dropped(&g_ecu, 2U);
+    const pfe_msg_status_t st = next_status(true, true);
+    assert_int_equal(st.rx_frames_dropped.value, 6);
+    assert_int_equal(st.tick_overruns.value, 3);
+    assert_int_equal(st.tx_frames_dropped.value, 2);
+    pfe_ecu_note_overrun(&g_ecu, 1000U);
+    assert_int_equal(next_status(true, true).tick_overruns.value, PFE_STATUS_COUNTER_MAX);
+}
+
+static void test_platoon_config_switches_the_model(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    pfe_can_frame_t f;
+    const pfe_msg_platoon_config_t m = {{5U, PFE_SIG_VALID}, {2U, PFE_SIG_VALID},
+                                        {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
+                                        {25000, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    for (uint32_t k = 0U; k < 100U; k++) {
+        tick(true, true);
+    }
+    assert_int_equal(g_ecu.platoon.n_vehicles, 5);
+    assert_int_equal(g_ecu.own_position, 2);
+    assert_false(g_ecu.degraded);
+    /* The own rate is the third truck's, 35 % drag reduction: below a lone truck's. */
+    const pfe_msg_lfe1_t own = next_lfe1(true, true);
+    assert_int_equal(own.fuel_rate_nl_s.state, PFE_SIG_VALID);
+    assert_true(own.fuel_rate_nl_s.value < 9291666U);
+    /* The config is not repeated: after 3 s it is stale, the module degraded. */
+    for (uint32_t k = 0U; k < 300U; k++) {
+        tick(true, true);
+    }
+    assert_true(g_ecu.degraded);
+    assert_int_equal(next_status(true, true).platoon_config_input, PFE_SIG_NOT_AVAILABLE);
+}
+
+/* 1000 resets at pseudo-random instants, some in the middle of an NVM write. */
+static void test_resets_never_lose_more_than_one_save_interval(void **state)
+{
+    (void)state;
+    static hal_nvm_t nvm;
+    hal_fake_nvm_init(&nvm);
+    const pfe_ecu_config_t c = config(); /* saves every 1 s */
+    uint32_t rng = 12345U;
+    uint64_t last_restored = 0U;
+    uint64_t worst_loss = 0U;
+    uint32_t torn = 0U;
+    for (uint32_t reset = 0U; reset < 1000U; reset++) {
+        uint8_t s0[PFE_NVM_RECORD_SIZE], s1[PFE_NVM_RECORD_SIZE];
+        assert_int_equal(hal_nvm_read(&nvm, 0U, s0), 0);
+        assert_int_equal(hal_nvm_read(&nvm, 1U, s1), 0);
+        pfe_nvm_state_t restored;
+        const int slot = pfe_nvm_pick(s0, s1, &restored);
+        assert_true(restored.own_fuel_ul >= last_restored); /* never backwards */
+        last_restored = restored.own_fuel_ul;
+        start(&c, &restored, slot);
+        assert_true(pfe_ecu_own_fuel_ul(&g_ecu) == restored.own_fuel_ul);
+        rng = (rng * 1103515245U) + 12345U;
+        const uint32_t ticks = 1U + ((rng >> 8) % 300U); /* up to 3 s of driving */
+        rng = (rng * 1103515245U) + 12345U;
+        const bool tear_last = ((rng >> 8) % 4U) == 0U;
+        uint64_t saved = restored.own_fuel_ul;
+        /* Drive `ticks`; for a quarter of the resets, go on to the next save
+         * and reset in the middle of writing it. */
+        for (uint32_t k = 0U; (k < ticks) || tear_last; k++) {
+            tick(true, true);
+            if (pfe_ecu_nvm_due(&g_ecu)) {
+                pfe_nvm_state_t rec;
+                uint8_t bytes[PFE_NVM_RECORD_SIZE];
+                const uint32_t to = pfe_ecu_nvm_slot(&g_ecu);
+                pfe_ecu_nvm_take(&g_ecu, &rec);
+                pfe_nvm_encode(&rec, bytes);
+                if (tear_last && (k >= ticks)) {
+                    hal_fake_nvm_tear_next_write(&nvm, (rng >> 12) % PFE_NVM_RECORD_SIZE);
+                    assert_int_equal(hal_nvm_write(&nvm, to, bytes), HAL_EIO);
+                    torn++;
+                    break;
+                }
+                assert_int_equal(hal_nvm_write(&nvm, to, bytes), 0);
+                saved = rec.own_fuel_ul;
+            }
+        }
+        const uint64_t at_reset = pfe_ecu_own_fuel_ul(&g_ecu);
+        assert_true(at_reset >= saved);
+        const uint64_t loss = at_reset - saved;
+        worst_loss = (loss > worst_loss) ? loss : worst_loss;
+    }
+    /* One save interval (1 s) at 9.3 mL/s, plus a tick: 9.4 mL. */
+    print_message("resets 1000, torn writes %lu, worst loss %llu uL, final total %llu uL\n", (unsigned long)torn,
+                  (unsigned long long)worst_loss, (unsigned long long)last_restored);
+    assert_true(torn > 100U);
+    assert_true(worst_loss <= 9400U);
+    assert_true(last_restored > 1000000U);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_claims_address_then_keeps_schedule),
+        cmocka_unit_test(test_fuel_rate_on_flat_road),
+        cmocka_unit_test(test_speed_timeout_within_three_periods_and_recovery),
+        cmocka_unit_test(test_grade_timeout_and_sender_error_values),
+        cmocka_unit_test(test_requests),
+        cmocka_unit_test(test_address_claim_conflicts),
+        cmocka_unit_test(test_counters_reach_the_status_message),
+        cmocka_unit_test(test_platoon_config_switches_the_model),
+        cmocka_unit_test(test_resets_never_lose_more_than_one_save_interval),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
