@@ -49,12 +49,18 @@ deps: $(DEPS_STAMP)
 
 # ---------------------------------------------------------------- host tools
 
-TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c
+TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu
 tools: $(TOOLS)
 
 $(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) -lm
+
+# The module as a Linux process on SocketCAN (hal/socketcan, hal/posix).
+ECU_HOST_SRC := sim_host/ecu_main.c hal/socketcan/hal_socketcan.c hal/posix/hal_nvm_file.c
+$(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
 
 $(HOST)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)

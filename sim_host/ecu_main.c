@@ -1,0 +1,234 @@
+/*
+ * pfe_ecu - the module's firmware as a Linux process on SocketCAN.
+ *
+ *   pfe_ecu --iface IF --nvm FILE [--address SA] [--save-interval-ms MS]
+ *           [--vehicles N --position P --gap-cm D] [--allow-real-bus]
+ *           [--duration-s S]
+ *
+ * Runs the ECU loop (firmware/pfe_ecu.h) every 10 ms on CLOCK_MONOTONIC
+ * absolute deadlines: receives every frame waiting on IF, ticks, sends what
+ * the tick produced, saves fuel totals to FILE when due. A late tick is
+ * counted as an overrun (and the schedule resynchronised), a frame the
+ * kernel would not take as a transmit drop. SIGINT or SIGTERM stop it
+ * cleanly with a final save. Sending on an interface that is not virtual
+ * CAN is refused unless --allow-real-bus is given.
+ *
+ * Exit status: 0 after a clean stop, 1 on a runtime failure, 2 on bad
+ * arguments.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "firmware/pfe_calib.h"
+#include "firmware/pfe_ecu.h"
+#include "firmware/pfe_fixed.h"
+#include "firmware/pfe_nvm.h"
+#include "hal/hal_can.h"
+#include "hal/posix/hal_nvm_file.h"
+#include "hal/socketcan/hal_socketcan.h"
+
+static volatile sig_atomic_t g_stop;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    g_stop = 1;
+}
+
+static uint64_t now_us(void)
+{
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ((uint64_t)ts.tv_sec * 1000000U) + ((uint64_t)ts.tv_nsec / 1000U);
+}
+
+static void sleep_until_us(uint64_t deadline)
+{
+    struct timespec ts;
+    ts.tv_sec = (time_t)(deadline / 1000000U);
+    ts.tv_nsec = (long)((deadline % 1000000U) * 1000U);
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) == EINTR) {
+        if (g_stop) {
+            return;
+        }
+    }
+}
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: pfe_ecu --iface IF --nvm FILE [--address SA] [--save-interval-ms MS]\n"
+               "               [--vehicles N --position P --gap-cm D] [--allow-real-bus]\n"
+               "               [--duration-s S]\n");
+}
+
+static int parse_ul(const char *s, unsigned long lo, unsigned long hi, unsigned long *out)
+{
+    char *end = NULL;
+    errno = 0;
+    const unsigned long v = strtoul(s, &end, 0);
+    if ((errno != 0) || (end == s) || (*end != '\0') || (s[0] == '-') || (v < lo) || (v > hi)) {
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+static int save(pfe_ecu_t *ecu, hal_nvm_t *nvm)
+{
+    pfe_nvm_state_t rec;
+    uint8_t bytes[PFE_NVM_RECORD_SIZE];
+    const uint32_t slot = pfe_ecu_nvm_slot(ecu);
+    pfe_ecu_nvm_take(ecu, &rec);
+    pfe_nvm_encode(&rec, bytes);
+    return hal_nvm_write(nvm, slot, bytes);
+}
+
+int main(int argc, char **argv)
+{
+    const char *iface = NULL;
+    const char *nvm_path = NULL;
+    unsigned long address = PFE_ECU_DEFAULT_ADDRESS, interval = 10000U, vehicles = 1U;
+    unsigned long position = 0U, gap_cm = 1000U, duration = 0U;
+    unsigned flags = 0U;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        int bad = 0;
+        if (strcmp(a, "--help") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--allow-real-bus") == 0) {
+            flags |= HAL_SOCKETCAN_ALLOW_REAL_BUS;
+            continue;
+        } else if (v == NULL) {
+            bad = 1;
+        } else if (strcmp(a, "--iface") == 0) {
+            iface = v;
+        } else if (strcmp(a, "--nvm") == 0) {
+            nvm_path = v;
+        } else if (strcmp(a, "--address") == 0) {
+            bad = parse_ul(v, 0U, 253U, &address);
+        } else if (strcmp(a, "--save-interval-ms") == 0) {
+            bad = parse_ul(v, 1000U, 3600000U, &interval);
+        } else if (strcmp(a, "--vehicles") == 0) {
+            bad = parse_ul(v, 1U, PFE_MAX_VEHICLES, &vehicles);
+        } else if (strcmp(a, "--position") == 0) {
+            bad = parse_ul(v, 0U, PFE_MAX_VEHICLES - 1U, &position);
+        } else if (strcmp(a, "--gap-cm") == 0) {
+            bad = parse_ul(v, 0U, 100000U, &gap_cm);
+        } else if (strcmp(a, "--duration-s") == 0) {
+            bad = parse_ul(v, 1U, 86400U * 365U, &duration);
+        } else {
+            fprintf(stderr, "pfe_ecu: unknown option '%s'\n", a);
+            usage(stderr);
+            return 2;
+        }
+        if (bad) {
+            fprintf(stderr, "pfe_ecu: option %s needs a valid value (got '%s')\n", a, v ? v : "nothing");
+            return 2;
+        }
+        i++;
+    }
+    if ((iface == NULL) || (nvm_path == NULL) || (position >= vehicles)) {
+        fprintf(stderr, "pfe_ecu: --iface and --nvm are required, and --position below --vehicles\n");
+        usage(stderr);
+        return 2;
+    }
+    hal_can_t *can = NULL;
+    int rc = hal_socketcan_open(&can, iface, flags);
+    if (rc != 0) {
+        fprintf(stderr, "pfe_ecu: cannot open %s: %s\n", iface,
+                (rc == HAL_EPERM) ? "not a virtual CAN interface; sending on a real bus needs "
+                                    "--allow-real-bus"
+                : (rc == HAL_ENODEV) ? "no such CAN interface (or no SocketCAN in this kernel)"
+                                     : "socket error");
+        return 1;
+    }
+    hal_nvm_t *nvm = NULL;
+    if (hal_nvm_file_open(&nvm, nvm_path) != 0) {
+        fprintf(stderr, "pfe_ecu: cannot open NVM file %s: %s\n", nvm_path, strerror(errno));
+        hal_socketcan_close(can);
+        return 1;
+    }
+    uint8_t s0[PFE_NVM_RECORD_SIZE], s1[PFE_NVM_RECORD_SIZE];
+    const int ok0 = hal_nvm_read(nvm, 0U, s0) == 0;
+    const int ok1 = hal_nvm_read(nvm, 1U, s1) == 0;
+    pfe_nvm_state_t restored;
+    const int slot = pfe_nvm_pick(ok0 ? s0 : NULL, ok1 ? s1 : NULL, &restored);
+
+    const pfe_ecu_config_t cfg = {
+        (uint8_t)address, 0x80A0000000000001ULL | ((uint64_t)address << 1), (uint32_t)interval,
+        &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
+        (uint32_t)vehicles, (uint32_t)position, (uint32_t)gap_cm * 10U,
+    };
+    static pfe_ecu_t ecu;
+    uint64_t t = now_us();
+    if (pfe_ecu_init(&ecu, &cfg, &restored, slot, t) != PFE_OK) {
+        fprintf(stderr, "pfe_ecu: invalid configuration\n");
+        return 2;
+    }
+    fprintf(stderr, "pfe_ecu: %s, address 0x%02lX, restored %llu uL own / %llu uL platoon%s\n",
+            iface, address, (unsigned long long)restored.own_fuel_ul,
+            (unsigned long long)restored.platoon_fuel_ul, (slot < 0) ? " (no valid record)" : "");
+
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    (void)sigaction(SIGINT, &sa, NULL);
+    (void)sigaction(SIGTERM, &sa, NULL);
+
+    const uint64_t end = (duration > 0U) ? (t + ((uint64_t)duration * 1000000U)) : UINT64_MAX;
+    uint64_t deadline = t;
+    hal_can_stats_t before;
+    hal_can_get_stats(can, &before);
+    int status = 0;
+    while (!g_stop && (deadline < end)) {
+        hal_can_rx_t rx;
+        while (hal_can_receive(can, &rx) == 0) {
+            pfe_ecu_receive(&ecu, &rx.frame, deadline);
+        }
+        hal_can_stats_t st;
+        hal_can_get_stats(can, &st);
+        if (st.rx_dropped != before.rx_dropped) {
+            pfe_ecu_note_rx_dropped(&ecu, st.rx_dropped - before.rx_dropped);
+        }
+        before = st;
+        pfe_can_frame_t tx[PFE_ECU_TX_MAX];
+        const uint32_t n = pfe_ecu_tick(&ecu, deadline, tx, PFE_ECU_TX_MAX);
+        for (uint32_t k = 0U; k < n; k++) {
+            if (hal_can_send(can, &tx[k]) != 0) {
+                pfe_ecu_note_tx_dropped(&ecu, 1U);
+            }
+        }
+        if (pfe_ecu_nvm_due(&ecu) && (save(&ecu, nvm) != 0)) {
+            fprintf(stderr, "pfe_ecu: NVM write failed: %s\n", strerror(errno));
+        }
+        deadline += PFE_ECU_TICK_US;
+        t = now_us();
+        if (t > (deadline + PFE_ECU_TICK_US)) {
+            /* Late by more than a tick: count the ticks lost and start again from now. */
+            const uint64_t lost = (t - deadline) / PFE_ECU_TICK_US;
+            pfe_ecu_note_overrun(&ecu, (lost > UINT32_MAX) ? UINT32_MAX : (uint32_t)lost);
+            deadline += lost * PFE_ECU_TICK_US;
+        }
+        sleep_until_us(deadline);
+    }
+    if (save(&ecu, nvm) != 0) {
+        fprintf(stderr, "pfe_ecu: final NVM write failed: %s\n", strerror(errno));
+        status = 1;
+    }
+    fprintf(stderr, "pfe_ecu: stopped; %llu uL own / %llu uL platoon saved; rx %lu, tx %lu, "
+                    "overruns %lu, rx dropped %lu, tx dropped %lu\n",
+            (unsigned long long)pfe_ecu_own_fuel_ul(&ecu),
+            (unsigned long long)pfe_ecu_platoon_fuel_ul(&ecu), (unsigned long)ecu.count.rx_frames,
+            (unsigned long)ecu.count.tx_frames, (unsigned long)ecu.count.overruns,
+            (unsigned long)ecu.count.rx_dropped, (unsigned long)ecu.count.tx_dropped);
+    hal_nvm_file_close(nvm);
+    hal_socketcan_close(can);
+    return status;
+}
