@@ -92,17 +92,23 @@ $(HOSTSAN)/test_road_csv: tests/host/test_road_csv.c sim_host/road_csv.c sim_hos
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -Isim_host -o $@ $< sim_host/road_csv.c -lcmocka -lm
 
+# Every codec signal checked against can_dbc/pfe.dbc, and the other way round.
+$(HOSTSAN)/test_dbc_codec: tests/host/test_dbc_codec.c sim_host/dbc.c sim_host/dbc.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/dbc.c $(FW_SRC) -lcmocka -lm
+
 $(HOSTSAN)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -o $@ $< -lm
 
 HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_accuracy \
-                  $(HOSTSAN)/test_road_csv $(HOSTSAN)/roadgen
+                  $(HOSTSAN)/test_road_csv $(HOSTSAN)/roadgen $(HOSTSAN)/test_dbc_codec
 
 test-host: $(HOST_TEST_BINS)
 	@set -e; for t in $(UNIT_TESTS); do echo "== host unit: $$t"; $(HOSTSAN)/unit_$$t; done
 	@echo "== host: test_accuracy"; $(HOSTSAN)/test_accuracy $(ROADS)
 	@echo "== host: test_road_csv"; $(HOSTSAN)/test_road_csv $(ROADS) $(HOSTSAN)/roadgen
+	@echo "== host: test_dbc_codec"; $(HOSTSAN)/test_dbc_codec can_dbc/pfe.dbc
 
 # ---------------------------------------------------------------- Cortex-M4 (QEMU mps2-an386)
 
