@@ -35,9 +35,10 @@
  *
  * Units: speed mm/s, angles micro-degrees, grade ppm (tan of the angle,
  * 1e6 = 100 %), distances mm, times ms, fuel rate nL/s, fuel volume uL.
- * All functions are reentrant, use no memory but the stack (under 100
- * bytes) and the caller's objects, and run in constant time except
- * pfe_codec_find_message() (O(number of messages)).
+ * All functions are reentrant, use no memory but the caller's objects and
+ * the stack (at most 112 bytes on the Cortex-M4, in pfe_preview_push()),
+ * and run in constant time except pfe_codec_find_message() (O(number of
+ * messages)).
  */
 #ifndef PFE_CODEC_H
 #define PFE_CODEC_H
