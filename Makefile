@@ -115,6 +115,7 @@ test-host: $(HOST_TEST_BINS)
 include mk/m4.mk
 # Optimised for instruction count, across files: the model's small helpers
 # (clamps, saturating adds) live in their own files and must inline.
+include mk/vcan.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
@@ -170,7 +171,7 @@ check-selfcheck: $(HOST)/selfcheck $(FIRMWARE_ELF)
 	else echo "selfcheck: host and Cortex-M4 outputs differ:"; \
 	    diff $(BUILD)/selfcheck_host.txt $(BUILD)/selfcheck_m4.txt; exit 1; fi
 
-test: test-host test-m4 check-selfcheck check-image m4-selftest
+test: test-host test-m4 check-selfcheck check-image m4-selftest vcan-test
 
 # ---------------------------------------------------------------- benchmarks
 

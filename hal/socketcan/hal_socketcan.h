@@ -32,6 +32,13 @@
  * of the wrong size). tx_dropped counts frames given up after
  * HAL_SOCKETCAN_SEND_RETRIES retries.
  *
+ * Filters (hal_can_add_filter) are the kernel's CAN_RAW_FILTER: rejected
+ * frames never reach the socket. A filter acts on frames that arrive after
+ * the call; frames already waiting in the socket are still received. Remote
+ * requests (RTR) are never received: pfe_can_frame_t cannot carry them.
+ * hal_can_add_filter also returns HAL_EINVAL for id or mask bits outside
+ * PFE_CAN_EFF_FLAG | PFE_CAN_ID_MASK, and HAL_EIO if the kernel refuses.
+ *
  * Memory: hal_socketcan_open allocates one handle (malloc); close frees it.
  * Not reentrant per handle: one thread uses a handle at a time; different
  * handles are independent.
