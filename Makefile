@@ -97,18 +97,25 @@ $(HOSTSAN)/test_dbc_codec: tests/host/test_dbc_codec.c sim_host/dbc.c sim_host/d
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/dbc.c $(FW_SRC) -lcmocka -lm
 
+# The HAL conformance suite on the test backend (on SocketCAN: mk/vcan.mk).
+$(HOSTSAN)/test_hal_fake: tests/hal/test_hal_fake.c tests/hal/hal_conformance.c hal/fake/hal_fake.c | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $^ -lcmocka
+
 $(HOSTSAN)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -o $@ $< -lm
 
 HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_accuracy \
-                  $(HOSTSAN)/test_road_csv $(HOSTSAN)/roadgen $(HOSTSAN)/test_dbc_codec
+                  $(HOSTSAN)/test_road_csv $(HOSTSAN)/roadgen $(HOSTSAN)/test_dbc_codec \
+                  $(HOSTSAN)/test_hal_fake
 
 test-host: $(HOST_TEST_BINS)
 	@set -e; for t in $(UNIT_TESTS); do echo "== host unit: $$t"; $(HOSTSAN)/unit_$$t; done
 	@echo "== host: test_accuracy"; $(HOSTSAN)/test_accuracy $(ROADS)
 	@echo "== host: test_road_csv"; $(HOSTSAN)/test_road_csv $(ROADS) $(HOSTSAN)/roadgen
 	@echo "== host: test_dbc_codec"; $(HOSTSAN)/test_dbc_codec can_dbc/pfe.dbc
+	@echo "== host: HAL conformance on hal/fake"; $(HOSTSAN)/test_hal_fake
 
 # ---------------------------------------------------------------- Cortex-M4 (QEMU mps2-an386)
 
