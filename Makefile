@@ -30,7 +30,7 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all tools deps run test test-host test-m4 firmware bench help clean check-image check-selfcheck
+.PHONY: all tools deps run test test-host test-m4 firmware bench help clean check-image check-selfcheck e2e-test
 .DEFAULT_GOAL := all
 
 all: tools
@@ -178,7 +178,31 @@ check-selfcheck: $(HOST)/selfcheck $(FIRMWARE_ELF)
 	else echo "selfcheck: host and Cortex-M4 outputs differ:"; \
 	    diff $(BUILD)/selfcheck_host.txt $(BUILD)/selfcheck_m4.txt; exit 1; fi
 
-test: test-host test-m4 check-selfcheck check-image m4-selftest vcan-test
+# End to end: the host ECU on vcan, fed a drive (600 m flat, then 900 m at
+# 2 %, 90 km/h) by canplayer, recorded by candump, judged by ecu_check.
+E2E_PAYLOAD := $(BUILD)/e2e/payload
+E2E_STATIC := -static -O2
+$(E2E_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
+$(E2E_PAYLOAD)/ecu_check: sim_host/ecu_check.c sim_host/ref_model.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/ecu_check.c sim_host/ref_model.c $(FW_SRC) -lm
+$(HOST)/drivegen: sim_host/drivegen.c sim_host/drive_trace.c $(REF_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/drivegen.c $(REF_SRC) $(FW_SRC) -lm
+$(E2E_PAYLOAD)/drive.log: $(HOST)/drivegen
+	@mkdir -p $(@D)
+	$(HOST)/drivegen --segment 600:0 --segment 900:2 --set-speed-kmh 90 --out $@
+$(E2E_PAYLOAD)/ecu_vcan.sh: tests/e2e/ecu_vcan.sh
+	@mkdir -p $(@D)
+	cp $< $@
+
+e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check drive.log ecu_vcan.sh)
+	$(VCAN_VM) --time --timeout 400 --payload $(abspath $(E2E_PAYLOAD)) -- \
+	    sh $(abspath $(E2E_PAYLOAD))/ecu_vcan.sh
+
+test: test-host test-m4 check-selfcheck check-image m4-selftest vcan-test e2e-test
 
 # ---------------------------------------------------------------- benchmarks
 
