@@ -9,13 +9,21 @@
  *   sim_12km_hilly_n5         the object model over the 12 km hilly road,
  *                             10 m steps, including the cruise control
  *   sim_step_mean             the same per step
+ *   ecu_tick_mean / _max      one 10 ms ECU tick with its decode and encode
+ *                             (pfe_ecu_receive of the tick's frames, then
+ *                             pfe_ecu_tick), CCVS1 every 10th tick, SSI every tick
+ *   ecu_tick_burst            a tick with a full receive queue: every input
+ *                             message and requests at once
  *   stack_used                deepest stack seen (painted-stack method)
  * Means are over many steps, so their resolution is far below the 40
  * instructions of one reading; a max is a single reading (+-40).
  */
+#include <stddef.h>
 #include <stdint.h>
 
 #include "firmware/pfe_calib.h"
+#include "firmware/pfe_codec.h"
+#include "firmware/pfe_ecu.h"
 #include "firmware/pfe_estimator.h"
 #include "firmware/pfe_fixed.h"
 #include "firmware/pfe_platoon.h"
@@ -129,12 +137,88 @@ static int bench_sim(void)
     return 0;
 }
 
+static pfe_ecu_t s_ecu;
+
+static uint64_t ecu_tick(uint64_t now_us, const pfe_can_frame_t *rx, uint32_t n_rx)
+{
+    pfe_can_frame_t tx[PFE_ECU_TX_MAX];
+    const uint64_t t0 = hal_mps2_icount_now();
+    for (uint32_t k = 0U; k < n_rx; k++) {
+        pfe_ecu_receive(&s_ecu, &rx[k], now_us);
+    }
+    const uint32_t n = pfe_ecu_tick(&s_ecu, now_us, tx, PFE_ECU_TX_MAX);
+    const uint64_t t1 = hal_mps2_icount_now();
+    for (uint32_t k = 0U; k < n; k++) {
+        sink(tx[k].id);
+        sink(tx[k].data[0] | ((uint64_t)tx[k].data[1] << 8));
+    }
+    return t1 - t0 - HAL_MPS2_ICOUNT_OVERHEAD_INSNS;
+}
+
+static int bench_ecu(void)
+{
+    const pfe_ecu_config_t cfg = {PFE_ECU_DEFAULT_ADDRESS, 0x80A0000000000001ULL, 10000U,
+                                  &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
+                                  5U, 0U, 10000U};
+    uint64_t now = 1000000U;
+    if (pfe_ecu_init(&s_ecu, &cfg, NULL, -1, now) != PFE_OK) {
+        return -1;
+    }
+    uint64_t total = 0U;
+    uint64_t worst = 0U;
+    uint32_t measured = 0U;
+    for (uint32_t tick = 0U; tick < 1100U; tick++, now += PFE_ECU_TICK_US) {
+        const pfe_est_input_t in = drive_input(tick);
+        pfe_can_frame_t rx[2];
+        uint32_t n_rx = 0U;
+        const pfe_msg_ssi_t ssi = {{in.grade_ppm / 20, PFE_SIG_VALID}, {0, PFE_SIG_VALID},
+                                   {0U, PFE_SIG_VALID}}; /* about the same pitch in udeg */
+        (void)pfe_codec_encode_ssi(&rx[n_rx++], &ssi, 0x00U);
+        if (in.speed_fresh) {
+            const pfe_msg_ccvs1_t v = {{in.speed_mm_s, PFE_SIG_VALID}};
+            (void)pfe_codec_encode_ccvs1(&rx[n_rx++], &v, 0x00U);
+        }
+        const uint64_t insns = ecu_tick(now, rx, n_rx);
+        if (tick >= 100U) { /* after the claim and the warm-up */
+            total += insns;
+            worst = (insns > worst) ? insns : worst;
+            measured++;
+        }
+    }
+    hal_mps2_write_bench("ecu_tick_mean", total / measured, "insn");
+    hal_mps2_write_bench("ecu_tick_max", worst, "insn");
+    /* Everything at once: a full receive queue of CCVS1, SSI, requests for each
+     * output and the platoon configuration (which rebuilds the model). */
+    static pfe_can_frame_t burst[PFE_ECU_RX_QUEUE_LEN];
+    for (uint32_t k = 0U; k < PFE_ECU_RX_QUEUE_LEN; k++) {
+        const uint32_t kind = k % 4U;
+        if (kind == 0U) {
+            const pfe_msg_ccvs1_t v = {{25000, PFE_SIG_VALID}};
+            (void)pfe_codec_encode_ccvs1(&burst[k], &v, 0x00U);
+        } else if (kind == 1U) {
+            const pfe_msg_ssi_t ssi = {{1000, PFE_SIG_VALID}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
+            (void)pfe_codec_encode_ssi(&burst[k], &ssi, 0x00U);
+        } else if (kind == 2U) {
+            (void)pfe_codec_encode_request(&burst[k], PFE_PGN_HRLFC + ((k / 4U) % 2U),
+                                           PFE_J1939_ADDR_GLOBAL, 0x00U);
+        } else {
+            const pfe_msg_platoon_config_t pc = {{5U + ((k / 4U) % 2U), PFE_SIG_VALID},
+                                                 {1U, PFE_SIG_VALID}, {10000U, PFE_SIG_VALID},
+                                                 {0U, PFE_SIG_NOT_AVAILABLE}, {25000, PFE_SIG_VALID}};
+            (void)pfe_codec_encode_platoon_config(&burst[k], &pc, 0x00U);
+        }
+    }
+    const uint64_t burst_insns = ecu_tick(now, burst, PFE_ECU_RX_QUEUE_LEN);
+    hal_mps2_write_bench("ecu_tick_burst", burst_insns, "insn");
+    return 0;
+}
+
 int main(void)
 {
     hal_mps2_icount_start();
     if ((bench_estimator(5U, "est_step_n5_mean", "est_step_n5_max") != 0) ||
         (bench_estimator(PFE_MAX_VEHICLES, "est_step_n32_mean", "est_step_n32_max") != 0) ||
-        (bench_sim() != 0)) {
+        (bench_sim() != 0) || (bench_ecu() != 0)) {
         hal_mps2_write_str("bench: failed\n");
         return 1;
     }
