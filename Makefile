@@ -178,8 +178,9 @@ check-selfcheck: $(HOST)/selfcheck $(FIRMWARE_ELF)
 	else echo "selfcheck: host and Cortex-M4 outputs differ:"; \
 	    diff $(BUILD)/selfcheck_host.txt $(BUILD)/selfcheck_m4.txt; exit 1; fi
 
-# End to end: the host ECU on vcan, fed a drive (600 m flat, then 900 m at
-# 2 %, 90 km/h) by canplayer, recorded by candump, judged by ecu_check.
+# End to end: the host ECU on vcan, fed a drive (600 m flat, a 150 m vertical
+# curve, then 750 m at 2 %, 90 km/h) by canplayer, recorded by candump, judged
+# by ecu_check.
 E2E_PAYLOAD := $(BUILD)/e2e/payload
 E2E_STATIC := -static -O2
 $(E2E_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
@@ -191,9 +192,10 @@ $(E2E_PAYLOAD)/ecu_check: sim_host/ecu_check.c sim_host/ref_model.c $(FW_SRC) $(
 $(HOST)/drivegen: sim_host/drivegen.c sim_host/drive_trace.c $(REF_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/drivegen.c $(REF_SRC) $(FW_SRC) -lm
-$(E2E_PAYLOAD)/drive.log: $(HOST)/drivegen
+$(E2E_PAYLOAD)/drive.log: $(HOST)/drivegen Makefile
 	@mkdir -p $(@D)
-	$(HOST)/drivegen --segment 600:0 --segment 900:2 --set-speed-kmh 90 --out $@
+	$(HOST)/drivegen --segment 600:0 --segment 50:0.5 --segment 50:1 --segment 50:1.5 \
+	    --segment 750:2 --set-speed-kmh 90 --out $@
 $(E2E_PAYLOAD)/ecu_vcan.sh: tests/e2e/ecu_vcan.sh
 	@mkdir -p $(@D)
 	cp $< $@
