@@ -320,6 +320,14 @@ static uint32_t emit(pfe_ecu_t *ecu, pfe_can_frame_t *tx, uint32_t n, uint32_t c
     return n;
 }
 
+/* Address Claimed (or, from PFE_J1939_ADDR_NULL, "cannot claim") with our NAME. */
+static void encode_claim(const pfe_ecu_t *ecu, pfe_can_frame_t *f, uint8_t source)
+{
+    pfe_j1939_name_t name;
+    pfe_j1939_name_unpack(ecu->cfg.name, &name);
+    (void)pfe_codec_encode_address_claimed(f, &name, source);
+}
+
 uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint32_t tx_cap)
 {
     ecu->now_us = now_us;
@@ -347,15 +355,13 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
 
     uint32_t n = 0U;
     pfe_can_frame_t f;
-    pfe_j1939_name_t name;
-    pfe_j1939_name_unpack(ecu->cfg.name, &name);
     if (ecu->cannot_claim_pending) {
-        (void)pfe_codec_encode_address_claimed(&f, &name, PFE_J1939_ADDR_NULL);
+        encode_claim(ecu, &f, PFE_J1939_ADDR_NULL);
         n = emit(ecu, tx, n, tx_cap, &f);
         ecu->cannot_claim_pending = false;
     }
     if (ecu->claim_pending && (ecu->addr_state != PFE_ECU_ADDR_LOST)) {
-        (void)pfe_codec_encode_address_claimed(&f, &name, ecu->address);
+        encode_claim(ecu, &f, ecu->address);
         n = emit(ecu, tx, n, tx_cap, &f);
         ecu->claim_pending = false;
     }

@@ -61,23 +61,12 @@ static char *format_u64(uint64_t value, char *buf_end)
 
 void hal_mps2_write_u32(uint32_t value)
 {
-    char buf[11];
-    buf[10] = '\0';
-    hal_mps2_write_str(format_u32(value, &buf[10]));
+    hal_mps2_write_u64(value);
 }
 
 void hal_mps2_write_i32(int32_t value)
 {
-    char buf[12];
-    buf[11] = '\0';
-    /* Negate in unsigned arithmetic: -INT32_MIN does not fit an int32_t. */
-    uint32_t magnitude = (value < 0) ? (0U - (uint32_t)value) : (uint32_t)value;
-    char *p = format_u32(magnitude, &buf[11]);
-    if (value < 0) {
-        --p;
-        *p = '-';
-    }
-    hal_mps2_write_str(p);
+    hal_mps2_write_i64(value);
 }
 
 void hal_mps2_write_u64(uint64_t value)
