@@ -1,6 +1,8 @@
 /* hal_fake.c - the test backend (contract in hal_fake.h). */
 #include "hal/fake/hal_fake.h"
 
+#include "hal/hal_can_mem.h"
+
 #include <stddef.h>
 #include <string.h>
 
@@ -46,34 +48,9 @@ uint64_t hal_fake_now_us(const hal_fake_bus_t *bus)
     return bus->now_us;
 }
 
-static bool accepts(const hal_can_t *h, uint32_t id)
-{
-    bool any = false;
-    for (uint32_t k = 0U; k < HAL_CAN_MAX_FILTERS; k++) {
-        if (h->filter_used[k]) {
-            any = true;
-            if ((id & h->filter_mask[k]) == (h->filter_id[k] & h->filter_mask[k])) {
-                return true;
-            }
-        }
-    }
-    return !any;
-}
-
-static bool frame_ok(const pfe_can_frame_t *f)
-{
-    if (f->dlc > PFE_CAN_MAX_DLC) {
-        return false;
-    }
-    if ((f->id & PFE_CAN_EFF_FLAG) != 0U) {
-        return (f->id & ~(PFE_CAN_EFF_FLAG | PFE_CAN_ID_MASK)) == 0U;
-    }
-    return f->id <= 0x7FFU;
-}
-
 int hal_can_send(hal_can_t *can, const pfe_can_frame_t *frame)
 {
-    if ((can == NULL) || !can->open || (frame == NULL) || !frame_ok(frame)) {
+    if ((can == NULL) || !can->open || (frame == NULL) || !hal_can_mem_frame_valid(frame)) {
         return HAL_EINVAL;
     }
     if (can->tx_space == 0U) {
@@ -85,7 +62,8 @@ int hal_can_send(hal_can_t *can, const pfe_can_frame_t *frame)
     hal_fake_bus_t *bus = can->bus;
     for (uint32_t k = 0U; k < HAL_FAKE_MAX_HANDLES; k++) {
         hal_can_t *h = &bus->handle[k];
-        if (!h->open || (h == can) || !accepts(h, frame->id)) {
+        if (!h->open || (h == can) || !hal_can_mem_accepts(h->filter_used, h->filter_id, h->filter_mask,
+                                                       HAL_CAN_MAX_FILTERS, frame->id)) {
             continue;
         }
         if (h->rx_count == HAL_FAKE_RX_QUEUE) {
