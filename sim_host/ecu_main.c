@@ -5,9 +5,10 @@
  *           [--vehicles N --position P --gap-cm D] [--allow-real-bus]
  *           [--duration-s S]
  *
- * Runs the ECU loop (firmware/pfe_ecu.h) every 10 ms on CLOCK_MONOTONIC
- * absolute deadlines: receives every frame waiting on IF, ticks, sends what
- * the tick produced, saves fuel totals to FILE when due. A late tick is
+ * Runs the ECU loop (firmware/pfe_ecu.h, through hal/hal_ecu_loop.h) every
+ * 10 ms on CLOCK_MONOTONIC absolute deadlines: receives every frame waiting
+ * on IF, ticks, sends what the tick produced, saves fuel totals to FILE
+ * when due. A late tick is
  * counted as an overrun (and the schedule resynchronised), a frame the
  * kernel would not take as a transmit drop. SIGINT or SIGTERM stop it
  * cleanly with a final save. Sending on an interface that is not virtual
@@ -29,6 +30,7 @@
 #include "firmware/pfe_fixed.h"
 #include "firmware/pfe_nvm.h"
 #include "hal/hal_can.h"
+#include "hal/hal_ecu_loop.h"
 #include "hal/posix/hal_nvm_file.h"
 #include "hal/socketcan/hal_socketcan.h"
 
@@ -76,16 +78,6 @@ static int parse_ul(const char *s, unsigned long lo, unsigned long hi, unsigned 
     }
     *out = v;
     return 0;
-}
-
-static int save(pfe_ecu_t *ecu, hal_nvm_t *nvm)
-{
-    pfe_nvm_state_t rec;
-    uint8_t bytes[PFE_NVM_RECORD_SIZE];
-    const uint32_t slot = pfe_ecu_nvm_slot(ecu);
-    pfe_ecu_nvm_take(ecu, &rec);
-    pfe_nvm_encode(&rec, bytes);
-    return hal_nvm_write(nvm, slot, bytes);
 }
 
 int main(int argc, char **argv)
@@ -155,26 +147,22 @@ int main(int argc, char **argv)
         hal_socketcan_close(can);
         return 1;
     }
-    uint8_t s0[PFE_NVM_RECORD_SIZE], s1[PFE_NVM_RECORD_SIZE];
-    const int ok0 = hal_nvm_read(nvm, 0U, s0) == 0;
-    const int ok1 = hal_nvm_read(nvm, 1U, s1) == 0;
-    pfe_nvm_state_t restored;
-    const int slot = pfe_nvm_pick(ok0 ? s0 : NULL, ok1 ? s1 : NULL, &restored);
-
-    const pfe_ecu_config_t cfg = {
-        (uint8_t)address, 0x80A0000000000001ULL | ((uint64_t)address << 1), (uint32_t)interval,
-        &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
-        (uint32_t)vehicles, (uint32_t)position, (uint32_t)gap_cm * 10U,
-    };
+    pfe_ecu_config_t cfg;
+    hal_ecu_loop_config(&cfg, (uint8_t)address, (uint32_t)interval, (uint32_t)vehicles,
+                        (uint32_t)position, (uint32_t)gap_cm * 10U);
     static pfe_ecu_t ecu;
+    static hal_ecu_loop_t loop;
     uint64_t t = now_us();
-    if (pfe_ecu_init(&ecu, &cfg, &restored, slot, t) != PFE_OK) {
+    if (hal_ecu_loop_init(&loop, &ecu, &cfg, can, nvm, t) != PFE_OK) {
         fprintf(stderr, "pfe_ecu: invalid configuration\n");
+        hal_nvm_file_close(nvm);
+        hal_socketcan_close(can);
         return 2;
     }
     fprintf(stderr, "pfe_ecu: %s, address 0x%02lX, restored %llu uL own / %llu uL platoon%s\n",
-            iface, address, (unsigned long long)restored.own_fuel_ul,
-            (unsigned long long)restored.platoon_fuel_ul, (slot < 0) ? " (no valid record)" : "");
+            iface, address, (unsigned long long)loop.restored.own_fuel_ul,
+            (unsigned long long)loop.restored.platoon_fuel_ul,
+            (loop.restored_slot < 0) ? " (no valid record)" : "");
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -184,30 +172,9 @@ int main(int argc, char **argv)
 
     const uint64_t end = (duration > 0U) ? (t + ((uint64_t)duration * 1000000U)) : UINT64_MAX;
     uint64_t deadline = t;
-    hal_can_stats_t before;
-    hal_can_get_stats(can, &before);
     int status = 0;
     while (!g_stop && (deadline < end)) {
-        hal_can_rx_t rx;
-        while (hal_can_receive(can, &rx) == 0) {
-            pfe_ecu_receive(&ecu, &rx.frame, deadline);
-        }
-        hal_can_stats_t st;
-        hal_can_get_stats(can, &st);
-        if (st.rx_dropped != before.rx_dropped) {
-            pfe_ecu_note_rx_dropped(&ecu, st.rx_dropped - before.rx_dropped);
-        }
-        before = st;
-        pfe_can_frame_t tx[PFE_ECU_TX_MAX];
-        const uint32_t n = pfe_ecu_tick(&ecu, deadline, tx, PFE_ECU_TX_MAX);
-        for (uint32_t k = 0U; k < n; k++) {
-            if (hal_can_send(can, &tx[k]) != 0) {
-                pfe_ecu_note_tx_dropped(&ecu, 1U);
-            }
-        }
-        if (pfe_ecu_nvm_due(&ecu) && (save(&ecu, nvm) != 0)) {
-            fprintf(stderr, "pfe_ecu: NVM write failed: %s\n", strerror(errno));
-        }
+        (void)hal_ecu_loop_step(&loop, deadline);
         deadline += PFE_ECU_TICK_US;
         t = now_us();
         if (t > (deadline + PFE_ECU_TICK_US)) {
@@ -218,16 +185,17 @@ int main(int argc, char **argv)
         }
         sleep_until_us(deadline);
     }
-    if (save(&ecu, nvm) != 0) {
+    if (hal_ecu_loop_save(&loop) != 0) {
         fprintf(stderr, "pfe_ecu: final NVM write failed: %s\n", strerror(errno));
         status = 1;
     }
     fprintf(stderr, "pfe_ecu: stopped; %llu uL own / %llu uL platoon saved; rx %lu, tx %lu, "
-                    "overruns %lu, rx dropped %lu, tx dropped %lu\n",
+                    "overruns %lu, rx dropped %lu, tx dropped %lu, NVM saves failed %lu\n",
             (unsigned long long)pfe_ecu_own_fuel_ul(&ecu),
             (unsigned long long)pfe_ecu_platoon_fuel_ul(&ecu), (unsigned long)ecu.count.rx_frames,
             (unsigned long)ecu.count.tx_frames, (unsigned long)ecu.count.overruns,
-            (unsigned long)ecu.count.rx_dropped, (unsigned long)ecu.count.tx_dropped);
+            (unsigned long)ecu.count.rx_dropped, (unsigned long)ecu.count.tx_dropped,
+            (unsigned long)loop.nvm_failures);
     hal_nvm_file_close(nvm);
     hal_socketcan_close(can);
     return status;

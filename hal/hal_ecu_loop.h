@@ -1,0 +1,60 @@
+/*
+ * hal_ecu_loop.h - the ECU's main loop over the HAL, the same for every
+ * backend: the Linux process on SocketCAN (sim_host/ecu_main.c), a replay of
+ * a log on the host (sim_host/ecu_replay.c) and on the emulated Cortex-M4
+ * (hal/mps2/main_ecu.c). Because they share this code, a replay on the host
+ * and on the Cortex-M4 must send the same frames.
+ *
+ * One pass, hal_ecu_loop_step(), at each 10 ms deadline:
+ *   1. every frame waiting on the CAN handle goes into the ECU, stamped with
+ *      the deadline (the ECU's clock; backends' receive clocks may differ);
+ *   2. frames the backend dropped since the last pass are reported;
+ *   3. the ECU ticks; what it sends goes to the handle, refusals are
+ *      reported as transmit drops;
+ *   4. fuel totals are saved to NVM when due.
+ * The caller owns the timing: what counts as late, and waiting.
+ */
+#ifndef HAL_ECU_LOOP_H
+#define HAL_ECU_LOOP_H
+
+#include <stdint.h>
+
+#include "firmware/pfe_ecu.h"
+#include "hal/hal_can.h"
+#include "hal/hal_nvm.h"
+
+typedef struct {
+    pfe_ecu_t *ecu;
+    hal_can_t *can;
+    hal_nvm_t *nvm;
+    hal_can_stats_t last;              /* backend counters at the previous pass */
+    uint32_t nvm_failures;             /* saves the backend refused */
+    int restored_slot;                 /* NVM slot restored from, -1 for none */
+    pfe_nvm_state_t restored;          /* totals restored at start-up */
+} hal_ecu_loop_t;
+
+/*
+ * The module's configuration as every main builds it: default calibration,
+ * J1939 NAME 0x80A0000000000001 with the preferred address in its identity
+ * field (bit 63: arbitrary address capable), default platoon of `vehicles`
+ * trucks, own position `position`, gap `gap_mm`.
+ */
+void hal_ecu_loop_config(pfe_ecu_config_t *cfg, uint8_t address, uint32_t save_interval_ms,
+                         uint32_t vehicles, uint32_t position, uint32_t gap_mm);
+
+/*
+ * Restores the fuel totals from nvm's two slots (pfe_nvm_pick()) and starts
+ * the ECU at now_us. The loop keeps the three pointers. Returns PFE_OK, or
+ * PFE_EINVAL for a configuration pfe_ecu_init() refuses.
+ */
+int hal_ecu_loop_init(hal_ecu_loop_t *loop, pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg,
+                      hal_can_t *can, hal_nvm_t *nvm, uint64_t now_us);
+
+/* One pass at deadline now_us (see above). Returns how many frames it sent. */
+uint32_t hal_ecu_loop_step(hal_ecu_loop_t *loop, uint64_t now_us);
+
+/* Writes the fuel totals now (at the end of a run): 0 or the backend's
+ * HAL_E* code. */
+int hal_ecu_loop_save(hal_ecu_loop_t *loop);
+
+#endif /* HAL_ECU_LOOP_H */
