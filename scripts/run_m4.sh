@@ -1,7 +1,12 @@
 #!/bin/sh
 # Run a Cortex-M4 ELF on QEMU's MPS2 AN386 board and return its exit code.
 #
-#   scripts/run_m4.sh [-t SECONDS] ELF
+#   scripts/run_m4.sh [-t SECONDS] ELF [ARG ...]
+#
+# ARGs reach the program as its semihosting command line (SYS_GET_CMDLINE:
+# "ELF ARG ...", hal_mps2_get_cmdline()); they may not contain spaces.
+# Files the program opens through semihosting are relative to the current
+# directory.
 #
 # Output: the program's semihosting console (hal/mps2/semihost.h) and newlib's
 # stdout (test images) go to this script's stdout; newlib's stderr (CMocka's
@@ -25,17 +30,29 @@ set -u
 timeout_s=${M4_TIMEOUT_S:-120}
 if [ "${1:-}" = "-t" ]; then
     if [ $# -lt 2 ]; then
-        echo "usage: $0 [-t SECONDS] ELF" >&2
+        echo "usage: $0 [-t SECONDS] ELF [ARG ...]" >&2
         exit 125
     fi
     timeout_s=$2
     shift 2
 fi
-if [ $# -ne 1 ]; then
-    echo "usage: $0 [-t SECONDS] ELF" >&2
+if [ $# -lt 1 ]; then
+    echo "usage: $0 [-t SECONDS] ELF [ARG ...]" >&2
     exit 125
 fi
 elf=$1
+shift
+# QEMU's option syntax: arguments separated by commas, a literal comma doubled.
+semi_args="arg=$(printf '%s' "$elf" | sed 's/,/,,/g')"
+for a in "$@"; do
+    case $a in
+    *" "*)
+        echo "run_m4.sh: an argument may not contain spaces: '$a'" >&2
+        exit 125
+        ;;
+    esac
+    semi_args="$semi_args,arg=$(printf '%s' "$a" | sed 's/,/,,/g')"
+done
 if [ ! -f "$elf" ]; then
     echo "run_m4.sh: no such file: $elf" >&2
     exit 125
@@ -52,7 +69,7 @@ fi
 timeout -k 5 "$timeout_s" "$qemu" \
     -M mps2-an386 -nographic -monitor none -serial none \
     -chardev stdio,id=semihost \
-    -semihosting-config enable=on,target=native,chardev=semihost \
+    -semihosting-config "enable=on,target=native,chardev=semihost,$semi_args" \
     -icount shift=0 \
     -kernel "$elf" </dev/null
 rc=$?

@@ -8,7 +8,12 @@
 #include <stddef.h>
 
 enum {
+    SYS_OPEN = 0x01,
+    SYS_CLOSE = 0x02,
     SYS_WRITE0 = 0x04,
+    SYS_WRITE = 0x05,
+    SYS_READ = 0x06,
+    SYS_GET_CMDLINE = 0x15,
     SYS_EXIT = 0x18,
     SYS_EXIT_EXTENDED = 0x20,
 };
@@ -125,6 +130,54 @@ void hal_mps2_write_bench(const char *name, uint64_t value, const char *unit)
     hal_mps2_write_str(" ");
     hal_mps2_write_str(unit);
     hal_mps2_write_str("\n");
+}
+
+int32_t hal_mps2_file_open(const char *path, uint32_t mode)
+{
+    uint32_t len = 0U;
+    while (path[len] != '\0') {
+        len++;
+    }
+    const uint32_t block[3] = {(uint32_t)(uintptr_t)path, mode, len};
+    return (int32_t)semihost_call(SYS_OPEN, block);
+}
+
+int32_t hal_mps2_file_read(int32_t handle, void *buf, uint32_t len)
+{
+    const uint32_t block[3] = {(uint32_t)handle, (uint32_t)(uintptr_t)buf, len};
+    /* SYS_READ returns the number of bytes NOT read. */
+    const uint32_t left = semihost_call(SYS_READ, block);
+    return (left > len) ? -1 : (int32_t)(len - left);
+}
+
+int32_t hal_mps2_file_write(int32_t handle, const void *buf, uint32_t len)
+{
+    const uint32_t block[3] = {(uint32_t)handle, (uint32_t)(uintptr_t)buf, len};
+    /* SYS_WRITE returns the number of bytes NOT written. */
+    return (semihost_call(SYS_WRITE, block) == 0U) ? 0 : -1;
+}
+
+int32_t hal_mps2_file_close(int32_t handle)
+{
+    const uint32_t block[1] = {(uint32_t)handle};
+    return (semihost_call(SYS_CLOSE, block) == 0U) ? 0 : -1;
+}
+
+int32_t hal_mps2_get_cmdline(char *buf, uint32_t cap)
+{
+    if (cap == 0U) {
+        return -1;
+    }
+    uint32_t block[2] = {(uint32_t)(uintptr_t)buf, cap};
+    if (semihost_call(SYS_GET_CMDLINE, block) != 0U) {
+        return -1;
+    }
+    /* On success the host puts the length, without the NUL, in the block. */
+    if (block[1] >= cap) {
+        return -1;
+    }
+    buf[block[1]] = '\0';
+    return (int32_t)block[1];
 }
 
 _Noreturn void hal_mps2_exit(int32_t status)

@@ -41,6 +41,30 @@ void hal_mps2_write_hex64(uint64_t value);
  * contain no spaces. */
 void hal_mps2_write_bench(const char *name, uint64_t value, const char *unit);
 
+/* Host files, through the emulator (QEMU -semihosting-config target=native
+ * opens them relative to its working directory). Handles are the host's. */
+#define HAL_MPS2_FILE_READ 1U          /* SYS_OPEN mode "rb" */
+#define HAL_MPS2_FILE_WRITE 5U         /* SYS_OPEN mode "wb": created or truncated */
+
+/* Opens path (NUL-terminated) with one of the modes above: a handle >= 0, or
+ * -1 when the host refuses. */
+int32_t hal_mps2_file_open(const char *path, uint32_t mode);
+
+/* Reads up to len bytes: how many (0 at the end of the file), or -1. */
+int32_t hal_mps2_file_read(int32_t handle, void *buf, uint32_t len);
+
+/* Writes len bytes: 0 when all were written, else -1. */
+int32_t hal_mps2_file_write(int32_t handle, const void *buf, uint32_t len);
+
+/* Closes a handle: 0 or -1. */
+int32_t hal_mps2_file_close(int32_t handle);
+
+/* The program's command line as the emulator was given it (QEMU:
+ * -semihosting-config ...,arg=PROG,arg=A1,...; scripts/run_m4.sh passes
+ * them), arguments separated by single spaces, NUL-terminated. Returns its
+ * length, or -1 when there is none or it does not fit in cap bytes. */
+int32_t hal_mps2_get_cmdline(char *buf, uint32_t cap);
+
 /* End the program: QEMU exits with status as its own exit code (the host
  * sees status & 0xFF, so use 0..255; negative values wrap, -1 gives 255).
  * Uses SYS_EXIT_EXTENDED; where a semihosting host lacks it, falls back to
