@@ -30,7 +30,8 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all tools deps run test test-host test-m4 firmware bench help clean check-image check-selfcheck e2e-test
+.PHONY: all tools deps run test test-host test-m4 firmware bench help clean check-image \
+        check-selfcheck check-replay e2e-test
 .DEFAULT_GOAL := all
 
 all: tools
@@ -49,7 +50,7 @@ deps: $(DEPS_STAMP)
 
 # ---------------------------------------------------------------- host tools
 
-TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu
+TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu $(HOST)/pfe_ecu_replay
 tools: $(TOOLS)
 
 $(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
@@ -57,10 +58,20 @@ $(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM
 	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) -lm
 
 # The module as a Linux process on SocketCAN (hal/socketcan, hal/posix).
-ECU_HOST_SRC := sim_host/ecu_main.c hal/socketcan/hal_socketcan.c hal/posix/hal_nvm_file.c
-$(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+ECU_LOOP_SRC := hal/hal_ecu_loop.c
+ECU_HOST_SRC := sim_host/ecu_main.c $(ECU_LOOP_SRC) hal/socketcan/hal_socketcan.c \
+    hal/posix/hal_nvm_file.c
+HAL_HDR := $(sort $(wildcard hal/*.h hal/*/*.h))
+$(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
+
+# The same firmware over a log in logical time (hal/replay); its twin on the
+# Cortex-M4 is $(M4_OUT)/pfe_ecu_mps2.elf.
+REPLAY_SRC := $(ECU_LOOP_SRC) hal/replay/hal_replay.c hal/replay/hal_replay_ecu.c
+$(HOST)/pfe_ecu_replay: sim_host/ecu_replay.c $(REPLAY_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_replay.c $(REPLAY_SRC) $(FW_SRC)
 
 $(HOST)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -102,13 +113,18 @@ $(HOSTSAN)/test_hal_fake: tests/hal/test_hal_fake.c tests/hal/hal_conformance.c 
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $^ -lcmocka
 
+# ... and on the replay backend, with the backend's own tests.
+$(HOSTSAN)/test_hal_replay: tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c $(HAL_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
+
 $(HOSTSAN)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -o $@ $< -lm
 
 HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_accuracy \
                   $(HOSTSAN)/test_road_csv $(HOSTSAN)/roadgen $(HOSTSAN)/test_dbc_codec \
-                  $(HOSTSAN)/test_hal_fake
+                  $(HOSTSAN)/test_hal_fake $(HOSTSAN)/test_hal_replay
 
 test-host: $(HOST_TEST_BINS)
 	@set -e; for t in $(UNIT_TESTS); do echo "== host unit: $$t"; $(HOSTSAN)/unit_$$t; done
@@ -116,6 +132,7 @@ test-host: $(HOST_TEST_BINS)
 	@echo "== host: test_road_csv"; $(HOSTSAN)/test_road_csv $(ROADS) $(HOSTSAN)/roadgen
 	@echo "== host: test_dbc_codec"; $(HOSTSAN)/test_dbc_codec can_dbc/pfe.dbc
 	@echo "== host: HAL conformance on hal/fake"; $(HOSTSAN)/test_hal_fake
+	@echo "== host: HAL conformance on hal/replay"; $(HOSTSAN)/test_hal_replay
 
 # ---------------------------------------------------------------- Cortex-M4 (QEMU mps2-an386)
 
@@ -135,10 +152,14 @@ $(GEN)/road_%.c: $(ROADS)/%.csv $(HOST)/road2c
 
 # The product image: the model's known-answer run over the bundled hilly road.
 $(call m4_image,pfe_mps2,$(FW_SRC) hal/mps2/main_selfcheck.c $(GEN)/road_hilly.c)
+# The firmware running a drive from a log, files through semihosting.
+$(call m4_image,pfe_ecu_mps2,$(FW_SRC) $(REPLAY_SRC) hal/mps2/main_ecu.c)
 # Instruction counts (make bench).
 $(call m4_image,pfe_bench,$(FW_SRC) tests/bench/m4_bench.c $(GEN)/road_hilly.c)
 # The firmware's unit tests, cross-compiled.
 $(foreach t,$(UNIT_TESTS),$(call m4_test,unit_$(t),$(UNIT_SRC) tests/unit/$(t).c))
+# The replay backend the image runs drives on, conformance suite included.
+$(call m4_test,test_hal_replay,tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c)
 
 FIRMWARE_ELF := $(M4_OUT)/pfe_mps2.elf
 
@@ -151,17 +172,24 @@ $(M4_OUT)/test_bad_image_float.elf: $(M4_OUT)/obj/image/tests/m4/bad_image_float
         $(call m4__objs,image,$(M4_HAL_IMAGE_SRCS))
 	$(M4_CC) $(filter %.o,$^) $(M4_LDFLAGS_IMAGE) -o $@
 
-check-image: $(FIRMWARE_ELF) $(M4_OUT)/pfe_bench.elf $(M4_OUT)/test_bad_image_float.elf
+check-image: $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf $(M4_OUT)/pfe_bench.elf \
+        $(M4_OUT)/test_bad_image_float.elf
 	$(M4_CHECK) $(FIRMWARE_ELF)
+	$(M4_CHECK) $(M4_OUT)/pfe_ecu_mps2.elf
 	$(M4_CHECK) $(M4_OUT)/pfe_bench.elf
 	@if $(M4_CHECK) $(M4_OUT)/test_bad_image_float.elf >$(BUILD)/bad_image.txt 2>&1; then \
 	    echo "check-image: a floating-point image passed the check"; exit 1; fi
 	@grep -q __aeabi_f $(BUILD)/bad_image.txt && \
 	    echo "check-image: refuses an image with floating point, as it should"
 
-test-m4: $(DEPS_STAMP) $(addprefix $(M4_OUT)/unit_,$(addsuffix .elf,$(UNIT_TESTS)))
+test-m4: $(DEPS_STAMP) $(addprefix $(M4_OUT)/unit_,$(addsuffix .elf,$(UNIT_TESTS))) \
+        $(M4_OUT)/test_hal_replay.elf
 	@set -e; for t in $(UNIT_TESTS); do echo "== Cortex-M4 unit: $$t"; \
 	    $(M4_RUN) $(M4_OUT)/unit_$$t.elf; done
+	@echo "== Cortex-M4: HAL conformance on hal/replay"; $(M4_RUN) $(M4_OUT)/test_hal_replay.elf
+
+	sh tests/replay/host_vs_m4.sh $(BUILD)/replay $(HOST) $(M4_OUT)/pfe_ecu_mps2.elf \
+	    $(E2E_PAYLOAD)/drive.log
 
 # Same inputs, bit-identical outputs on the host and on the Cortex-M4.
 $(HOST)/selfcheck: sim_host/selfcheck.c sim_host/road_csv.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
@@ -200,11 +228,31 @@ $(E2E_PAYLOAD)/ecu_vcan.sh: tests/e2e/ecu_vcan.sh
 	@mkdir -p $(@D)
 	cp $< $@
 
-e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check drive.log ecu_vcan.sh)
-	$(VCAN_VM) --time --timeout 400 --payload $(abspath $(E2E_PAYLOAD)) -- \
+$(E2E_PAYLOAD)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c $(FW_SRC)
+$(E2E_PAYLOAD)/faults.log: $(HOST)/pfe_faults $(E2E_PAYLOAD)/drive.log
+	$(HOST)/pfe_faults inject $(E2E_PAYLOAD)/drive.log $@
+
+e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log faults.log ecu_vcan.sh)
+	$(VCAN_VM) --time --timeout 500 --payload $(abspath $(E2E_PAYLOAD)) -- \
 	    sh $(abspath $(E2E_PAYLOAD))/ecu_vcan.sh
 
-test: test-host test-m4 check-selfcheck check-image m4-selftest vcan-test e2e-test
+# One log through the firmware on the host and in the Cortex-M4 image, in
+# the log's time: identical records; then judged (tests/replay/host_vs_m4.sh).
+$(HOST)/ecu_check: sim_host/ecu_check.c sim_host/ref_model.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_check.c sim_host/ref_model.c $(FW_SRC) -lm
+$(HOST)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c $(FW_SRC)
+
+check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_OUT)/pfe_ecu_mps2.elf \
+        $(E2E_PAYLOAD)/drive.log
+	sh tests/replay/host_vs_m4.sh $(BUILD)/replay $(HOST) $(M4_OUT)/pfe_ecu_mps2.elf \
+	    $(E2E_PAYLOAD)/drive.log
+
+test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test
 
 # ---------------------------------------------------------------- benchmarks
 
@@ -212,9 +260,16 @@ $(HOST)/host_bench: tests/bench/host_bench.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SI
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ $< $(FW_SRC) $(REF_SRC) -lm
 
-bench: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF)
+bench: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf \
+        $(E2E_PAYLOAD)/drive.log
 	@$(M4_RUN) $(M4_OUT)/pfe_bench.elf
+	@# The ECU's tick over a whole drive (61.6 s, 6263 ticks) in the image that
+	@# replays it: receive, decode, estimate, encode, send; feeding the log apart.
+	@$(M4_RUN) $(M4_OUT)/pfe_ecu_mps2.elf --log $(E2E_PAYLOAD)/drive.log | awk '/^m4:/ { \
+	    print "bench: ecu_drive_tick_mean " $$5 " insn"; print "bench: ecu_drive_tick_max " $$7 " insn"; \
+	    print "bench: replay_feed_mean " $$9 " insn"; ok = 1 } END { exit !ok }'
 	@$(M4_CHECK) --bench pfe_mps2 $(FIRMWARE_ELF)
+	@$(M4_CHECK) --bench pfe_ecu_mps2 $(M4_OUT)/pfe_ecu_mps2.elf
 	@echo "bench: pfe_mps2_heap $$($(M4_SIZE) -A $(FIRMWARE_ELF) | \
 	    awk '/heap/ { n += $$2 } END { print n + 0 }') bytes"
 	@$(HOST)/host_bench $(ROADS)

@@ -1,0 +1,81 @@
+#!/bin/sh
+# The same logs through the firmware on the host (pfe_ecu_replay) and in the
+# Cortex-M4 image under QEMU (pfe_ecu_mps2.elf), both in the log's time:
+# their records of the bus must be identical byte for byte, and so must their
+# summaries. Then each record is judged:
+#   drive.log   ecu_check: LFE1 within 1 %, HRLFC within 0.5 % of the reference
+#   faults.log  pfe_faults judge: each input fault handled in time, and
+#               pfe_faults must fail on the fault-free record (it can fail)
+#   bad.log     a log with bad lines: both refuse it the same way (exit 1,
+#               same first bad line named)
+#
+#   tests/replay/host_vs_m4.sh OUTDIR HOST_TOOLS_DIR M4_ELF DRIVE_LOG
+#
+# Exit status 0 when all of it holds.
+set -u
+out=$1 tools=$2 elf=$3 drive=$4
+root=$(cd "$(dirname "$0")/../.." && pwd)
+mkdir -p "$out"
+fail=0
+
+run_both() { # NAME LOG [options...]
+    name=$1 log=$2
+    shift 2
+    "$tools/pfe_ecu_replay" --log "$log" --record "$out/$name.host.log" "$@" \
+        > "$out/$name.host.txt" 2> "$out/$name.host.err"
+    host_rc=$?
+    "$root/scripts/run_m4.sh" "$elf" --log "$log" --record "$out/$name.m4.log" "$@" \
+        > "$out/$name.m4.txt" 2> "$out/$name.m4.err"
+    m4_rc=$?
+    grep '^replay:' "$out/$name.m4.txt" > "$out/$name.m4.summary"
+    grep '^replay:' "$out/$name.host.txt" > "$out/$name.host.summary"
+    if [ "$host_rc" -ne "$m4_rc" ]; then
+        echo "replay $name: exit status host $host_rc, Cortex-M4 $m4_rc"
+        fail=1
+    elif ! cmp -s "$out/$name.host.log" "$out/$name.m4.log"; then
+        echo "replay $name: records differ:"
+        cmp "$out/$name.host.log" "$out/$name.m4.log"
+        fail=1
+    elif ! cmp -s "$out/$name.host.summary" "$out/$name.m4.summary"; then
+        echo "replay $name: summaries differ:"
+        cat "$out/$name.host.summary" "$out/$name.m4.summary"
+        fail=1
+    else
+        echo "replay $name: host and Cortex-M4 records identical," \
+            "$(wc -l < "$out/$name.m4.log") lines, $(wc -c < "$out/$name.m4.log") bytes" \
+            "(sha256 $(sha256sum < "$out/$name.m4.log" | cut -c1-16)), exit status $m4_rc"
+        grep '^m4:' "$out/$name.m4.txt" | sed "s/^/replay $name: /"
+    fi
+    return "$m4_rc"
+}
+
+run_both drive "$drive" || { echo "replay drive: failed"; cat "$out/drive.m4.txt"; fail=1; }
+"$tools/ecu_check" "$out/drive.m4.log" || fail=1
+
+"$tools/pfe_faults" inject "$drive" "$out/faults.log" || fail=1
+run_both faults "$out/faults.log" || { echo "replay faults: failed"; fail=1; }
+"$tools/pfe_faults" judge "$out/faults.m4.log" || fail=1
+if "$tools/pfe_faults" judge "$out/drive.m4.log" > "$out/faults_on_clean.txt"; then
+    echo "replay: pfe_faults passed a record without faults"
+    fail=1
+else
+    echo "replay: pfe_faults fails a record without faults, as it should"
+fi
+
+# Bad lines in the middle of a drive: counted, skipped, the first named.
+head -n 100 "$drive" > "$out/bad.log"
+printf '(1700000001.000000) vcan0 18FEF100#GG\n' >> "$out/bad.log"
+printf '(1700000001.000000) vcan0 18FEF100#00112233445566778899\n' >> "$out/bad.log"
+tail -n +101 "$drive" | head -n 100 >> "$out/bad.log"
+run_both bad "$out/bad.log"
+bad_rc=$?
+if [ "$bad_rc" -ne 1 ] || ! grep -q 'line 101: bad data' "$out/bad.m4.txt" ||
+    ! grep -q 'line 101: bad data' "$out/bad.host.err" || ! grep -q ' bad 2 ' "$out/bad.m4.summary"; then
+    echo "replay bad: expected exit 1 and line 101 named on both (got $bad_rc):"
+    cat "$out/bad.m4.txt" "$out/bad.host.err"
+    fail=1
+else
+    echo "replay bad: both name it: $(grep 'bad lines' "$out/bad.m4.txt")"
+fi
+[ "$fail" -eq 0 ] && echo "replay: host and Cortex-M4 agree on every log"
+exit "$fail"
