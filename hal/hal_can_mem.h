@@ -1,7 +1,12 @@
 /*
- * hal_can_mem.h - the parts of hal_can.h's contract that every in-memory
- * backend (hal/fake, hal/replay) implements the same way: which frames can
- * exist, and which frames a handle's filters accept.
+ * hal_can_mem.h - what every in-memory backend (hal/fake, hal/replay) does
+ * the same way: which frames can exist, and one node's port on a simulated
+ * bus: its filters, its bounded receive queue, its counters, with
+ * hal_can.h's semantics (filters per hal_can_add_filter(), frames in bus
+ * order, overflow counted in rx_dropped).
+ *
+ * The port keeps no storage of its own for frames: the backend hands it an
+ * array (its queue length is the backend's to choose).
  */
 #ifndef HAL_CAN_MEM_H
 #define HAL_CAN_MEM_H
@@ -11,34 +16,31 @@
 
 #include "hal/hal_can.h"
 
+typedef struct {
+    hal_can_rx_t *rx;                  /* the backend's queue storage */
+    uint32_t rx_cap;
+    uint32_t rx_head;
+    uint32_t rx_count;
+    uint32_t filter_id[HAL_CAN_MAX_FILTERS];
+    uint32_t filter_mask[HAL_CAN_MAX_FILTERS];
+    bool filter_used[HAL_CAN_MAX_FILTERS];
+    hal_can_stats_t stats;
+} hal_can_mem_port_t;
+
 /* A frame hal_can_send() may take: dlc 0..8; a 29-bit id with
  * PFE_CAN_EFF_FLAG and no other flag bit, or an 11-bit id. */
-static inline bool hal_can_mem_frame_valid(const pfe_can_frame_t *f)
-{
-    if (f->dlc > PFE_CAN_MAX_DLC) {
-        return false;
-    }
-    if ((f->id & PFE_CAN_EFF_FLAG) != 0U) {
-        return (f->id & ~(PFE_CAN_EFF_FLAG | PFE_CAN_ID_MASK)) == 0U;
-    }
-    return f->id <= 0x7FFU;
-}
+bool hal_can_mem_frame_valid(const pfe_can_frame_t *f);
 
-/* hal_can_add_filter()'s rule over n filter slots: (id & mask) == (filter
- * id & mask) for one used slot, or no slot used at all. */
-static inline bool hal_can_mem_accepts(const bool *used, const uint32_t *filter_id,
-                                       const uint32_t *filter_mask, uint32_t n, uint32_t id)
-{
-    bool any = false;
-    for (uint32_t k = 0U; k < n; k++) {
-        if (used[k]) {
-            any = true;
-            if ((id & filter_mask[k]) == (filter_id[k] & filter_mask[k])) {
-                return true;
-            }
-        }
-    }
-    return !any;
-}
+/* An empty port on rx[0 .. rx_cap - 1], no filter, counters at zero. */
+void hal_can_mem_port_init(hal_can_mem_port_t *port, hal_can_rx_t *rx, uint32_t rx_cap);
+
+/* A frame on the bus at t_us: queued if the filters accept it, counted in
+ * rx_dropped if the queue is full. */
+void hal_can_mem_port_offer(hal_can_mem_port_t *port, const pfe_can_frame_t *f, uint64_t t_us);
+
+/* hal_can_receive(), hal_can_add_filter(), hal_can_remove_filter() on a port. */
+int hal_can_mem_port_receive(hal_can_mem_port_t *port, hal_can_rx_t *out);
+int hal_can_mem_port_add_filter(hal_can_mem_port_t *port, uint32_t id, uint32_t mask);
+int hal_can_mem_port_remove_filter(hal_can_mem_port_t *port, int index);
 
 #endif /* HAL_CAN_MEM_H */

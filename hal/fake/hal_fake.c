@@ -20,6 +20,7 @@ hal_can_t *hal_fake_open(hal_fake_bus_t *bus)
             h->bus = bus;
             h->open = true;
             h->tx_space = UINT32_MAX;
+            hal_can_mem_port_init(&h->port, h->rx, HAL_FAKE_RX_QUEUE);
             return h;
         }
     }
@@ -62,20 +63,11 @@ int hal_can_send(hal_can_t *can, const pfe_can_frame_t *frame)
     hal_fake_bus_t *bus = can->bus;
     for (uint32_t k = 0U; k < HAL_FAKE_MAX_HANDLES; k++) {
         hal_can_t *h = &bus->handle[k];
-        if (!h->open || (h == can) || !hal_can_mem_accepts(h->filter_used, h->filter_id, h->filter_mask,
-                                                       HAL_CAN_MAX_FILTERS, frame->id)) {
-            continue;
+        if (h->open && (h != can)) {
+            hal_can_mem_port_offer(&h->port, frame, bus->now_us);
         }
-        if (h->rx_count == HAL_FAKE_RX_QUEUE) {
-            h->stats.rx_dropped++;
-            continue;
-        }
-        hal_can_rx_t *slot = &h->rx[(h->rx_head + h->rx_count) % HAL_FAKE_RX_QUEUE];
-        slot->frame = *frame;
-        slot->timestamp_us = bus->now_us;
-        h->rx_count++;
     }
-    can->stats.tx_frames++;
+    can->port.stats.tx_frames++;
     return 0;
 }
 
@@ -84,14 +76,7 @@ int hal_can_receive(hal_can_t *can, hal_can_rx_t *out)
     if ((can == NULL) || !can->open || (out == NULL)) {
         return HAL_EINVAL;
     }
-    if (can->rx_count == 0U) {
-        return HAL_EAGAIN;
-    }
-    *out = can->rx[can->rx_head];
-    can->rx_head = (can->rx_head + 1U) % HAL_FAKE_RX_QUEUE;
-    can->rx_count--;
-    can->stats.rx_frames++;
-    return 0;
+    return hal_can_mem_port_receive(&can->port, out);
 }
 
 int hal_can_add_filter(hal_can_t *can, uint32_t id, uint32_t mask)
@@ -99,30 +84,20 @@ int hal_can_add_filter(hal_can_t *can, uint32_t id, uint32_t mask)
     if ((can == NULL) || !can->open) {
         return HAL_EINVAL;
     }
-    for (uint32_t k = 0U; k < HAL_CAN_MAX_FILTERS; k++) {
-        if (!can->filter_used[k]) {
-            can->filter_used[k] = true;
-            can->filter_id[k] = id;
-            can->filter_mask[k] = mask;
-            return (int)k;
-        }
-    }
-    return HAL_ENOSPC;
+    return hal_can_mem_port_add_filter(&can->port, id, mask);
 }
 
 int hal_can_remove_filter(hal_can_t *can, int index)
 {
-    if ((can == NULL) || (index < 0) || ((uint32_t)index >= HAL_CAN_MAX_FILTERS) ||
-        !can->filter_used[index]) {
+    if (can == NULL) {
         return HAL_EINVAL;
     }
-    can->filter_used[index] = false;
-    return 0;
+    return hal_can_mem_port_remove_filter(&can->port, index);
 }
 
 void hal_can_get_stats(const hal_can_t *can, hal_can_stats_t *out)
 {
-    *out = can->stats;
+    *out = can->port.stats;
 }
 
 void hal_fake_nvm_init(hal_nvm_t *nvm)

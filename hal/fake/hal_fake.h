@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "hal/hal_can.h"
+#include "hal/hal_can_mem.h"
 #include "hal/hal_nvm.h"
 
 #define HAL_FAKE_RX_QUEUE 256U
@@ -27,14 +28,9 @@ typedef struct hal_fake_bus hal_fake_bus_t;
 struct hal_can {
     hal_fake_bus_t *bus;
     bool open;
+    hal_can_mem_port_t port;         /* filters, receive queue, counters */
     hal_can_rx_t rx[HAL_FAKE_RX_QUEUE];
-    uint32_t rx_head;
-    uint32_t rx_count;
-    uint32_t filter_id[HAL_CAN_MAX_FILTERS];
-    uint32_t filter_mask[HAL_CAN_MAX_FILTERS];
-    bool filter_used[HAL_CAN_MAX_FILTERS];
     uint32_t tx_space;               /* frames the transmit queue takes before HAL_EAGAIN */
-    hal_can_stats_t stats;
 };
 
 struct hal_fake_bus {

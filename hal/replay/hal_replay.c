@@ -101,19 +101,9 @@ static void deliver(hal_replay_bus_t *bus, const pfe_can_frame_t *f, uint64_t t_
 {
     for (uint32_t k = 0U; k < HAL_REPLAY_MAX_HANDLES; k++) {
         hal_can_t *h = &bus->handle[k];
-        if (!h->open || (h == from) ||
-            !hal_can_mem_accepts(h->filter_used, h->filter_id, h->filter_mask, HAL_CAN_MAX_FILTERS,
-                                 f->id)) {
-            continue;
+        if (h->open && (h != from)) {
+            hal_can_mem_port_offer(&h->port, f, t_us);
         }
-        if (h->rx_count == HAL_REPLAY_RX_QUEUE) {
-            h->stats.rx_dropped++;
-            continue;
-        }
-        hal_can_rx_t *slot = &h->rx[(h->rx_head + h->rx_count) % HAL_REPLAY_RX_QUEUE];
-        slot->frame = *f;
-        slot->timestamp_us = t_us;
-        h->rx_count++;
     }
     record_frame(bus, f, t_us);
 }
@@ -416,6 +406,7 @@ hal_can_t *hal_replay_open(hal_replay_bus_t *bus)
             memset(h, 0, sizeof *h);
             h->bus = bus;
             h->open = true;
+            hal_can_mem_port_init(&h->port, h->rx, HAL_REPLAY_RX_QUEUE);
             return h;
         }
     }
@@ -476,7 +467,7 @@ int hal_can_send(hal_can_t *can, const pfe_can_frame_t *frame)
     }
     hal_replay_bus_t *bus = can->bus;
     deliver(bus, frame, bus->now_us, can);
-    can->stats.tx_frames++;
+    can->port.stats.tx_frames++;
     bus->stats.sent_frames++;
     return 0;
 }
@@ -486,14 +477,7 @@ int hal_can_receive(hal_can_t *can, hal_can_rx_t *out)
     if ((can == NULL) || !can->open || (out == NULL)) {
         return HAL_EINVAL;
     }
-    if (can->rx_count == 0U) {
-        return HAL_EAGAIN;
-    }
-    *out = can->rx[can->rx_head];
-    can->rx_head = (can->rx_head + 1U) % HAL_REPLAY_RX_QUEUE;
-    can->rx_count--;
-    can->stats.rx_frames++;
-    return 0;
+    return hal_can_mem_port_receive(&can->port, out);
 }
 
 int hal_can_add_filter(hal_can_t *can, uint32_t id, uint32_t mask)
@@ -501,30 +485,20 @@ int hal_can_add_filter(hal_can_t *can, uint32_t id, uint32_t mask)
     if ((can == NULL) || !can->open) {
         return HAL_EINVAL;
     }
-    for (uint32_t k = 0U; k < HAL_CAN_MAX_FILTERS; k++) {
-        if (!can->filter_used[k]) {
-            can->filter_used[k] = true;
-            can->filter_id[k] = id;
-            can->filter_mask[k] = mask;
-            return (int)k;
-        }
-    }
-    return HAL_ENOSPC;
+    return hal_can_mem_port_add_filter(&can->port, id, mask);
 }
 
 int hal_can_remove_filter(hal_can_t *can, int index)
 {
-    if ((can == NULL) || (index < 0) || ((uint32_t)index >= HAL_CAN_MAX_FILTERS) ||
-        !can->filter_used[index]) {
+    if (can == NULL) {
         return HAL_EINVAL;
     }
-    can->filter_used[index] = false;
-    return 0;
+    return hal_can_mem_port_remove_filter(&can->port, index);
 }
 
 void hal_can_get_stats(const hal_can_t *can, hal_can_stats_t *out)
 {
-    *out = can->stats;
+    *out = can->port.stats;
 }
 
 /* ------------------------------------------------------------------ hal_nvm.h */

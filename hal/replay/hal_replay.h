@@ -45,6 +45,7 @@
 #include <stdint.h>
 
 #include "hal/hal_can.h"
+#include "hal/hal_can_mem.h"
 #include "hal/hal_nvm.h"
 
 #define HAL_REPLAY_MAX_HANDLES 2U
@@ -90,13 +91,8 @@ typedef struct hal_replay_bus hal_replay_bus_t;
 struct hal_can {
     hal_replay_bus_t *bus;
     bool open;
+    hal_can_mem_port_t port;         /* filters, receive queue, counters */
     hal_can_rx_t rx[HAL_REPLAY_RX_QUEUE];
-    uint32_t rx_head;
-    uint32_t rx_count;
-    uint32_t filter_id[HAL_CAN_MAX_FILTERS];
-    uint32_t filter_mask[HAL_CAN_MAX_FILTERS];
-    bool filter_used[HAL_CAN_MAX_FILTERS];
-    hal_can_stats_t stats;
 };
 
 /* The bus. Fields are the backend's; the caller owns the storage. */
