@@ -60,7 +60,7 @@ $(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM
 # The module as a Linux process on SocketCAN (hal/socketcan, hal/posix).
 ECU_LOOP_SRC := hal/hal_ecu_loop.c
 ECU_HOST_SRC := sim_host/ecu_main.c $(ECU_LOOP_SRC) hal/socketcan/hal_socketcan.c \
-    hal/posix/hal_nvm_file.c
+    hal/posix/hal_nvm_file.c hal/posix/hal_time_posix.c
 HAL_HDR := $(sort $(wildcard hal/*.h hal/*/*.h))
 $(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)

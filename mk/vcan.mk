@@ -78,8 +78,9 @@ VCAN_WARN_FLAGS := -std=c11 -Wall -Wextra -Werror -Wconversion -Wsign-conversion
 VCAN_SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all \
     -fno-omit-frame-pointer
 
-VCAN_HAL_SRCS := $(VCAN_ROOT)/hal/socketcan/hal_socketcan.c
+VCAN_HAL_SRCS := $(VCAN_ROOT)/hal/socketcan/hal_socketcan.c $(VCAN_ROOT)/hal/posix/hal_time_posix.c
 VCAN_HAL_HDRS := $(VCAN_ROOT)/hal/socketcan/hal_socketcan.h $(VCAN_ROOT)/hal/hal_can.h \
+    $(VCAN_ROOT)/hal/hal_time.h $(VCAN_ROOT)/hal/posix/hal_time_posix.h \
     $(VCAN_ROOT)/firmware/pfe_can.h
 VCAN_SUITE_SRCS := $(VCAN_ROOT)/tests/hal/hal_conformance.c
 VCAN_SUITE_HDRS := $(VCAN_ROOT)/tests/hal/hal_conformance.h

@@ -6,7 +6,7 @@
  *           [--duration-s S]
  *
  * Runs the ECU loop (firmware/pfe_ecu.h, through hal/hal_ecu_loop.h) every
- * 10 ms on CLOCK_MONOTONIC absolute deadlines: receives every frame waiting
+ * 10 ms on CLOCK_MONOTONIC absolute deadlines (hal/posix/hal_time_posix.h): receives every frame waiting
  * on IF, ticks, sends what the tick produced, saves fuel totals to FILE
  * when due. A late tick is
  * counted as an overrun (and the schedule resynchronised), a frame the
@@ -32,6 +32,7 @@
 #include "hal/hal_can.h"
 #include "hal/hal_ecu_loop.h"
 #include "hal/posix/hal_nvm_file.h"
+#include "hal/posix/hal_time_posix.h"
 #include "hal/socketcan/hal_socketcan.h"
 
 static volatile sig_atomic_t g_stop;
@@ -42,22 +43,10 @@ static void on_signal(int sig)
     g_stop = 1;
 }
 
-static uint64_t now_us(void)
+/* Waits for the deadline; a signal cuts the wait short only to stop. */
+static void sleep_until_us(hal_time_t *clock, uint64_t deadline)
 {
-    struct timespec ts;
-    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ((uint64_t)ts.tv_sec * 1000000U) + ((uint64_t)ts.tv_nsec / 1000U);
-}
-
-static void sleep_until_us(uint64_t deadline)
-{
-    struct timespec ts;
-    ts.tv_sec = (time_t)(deadline / 1000000U);
-    ts.tv_nsec = (long)((deadline % 1000000U) * 1000U);
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) == EINTR) {
-        if (g_stop) {
-            return;
-        }
+    while ((hal_time_wait_until_us(clock, deadline) == HAL_EINTR) && !g_stop) {
     }
 }
 
@@ -152,7 +141,8 @@ int main(int argc, char **argv)
                         (uint32_t)position, (uint32_t)gap_cm * 10U);
     static pfe_ecu_t ecu;
     static hal_ecu_loop_t loop;
-    uint64_t t = now_us();
+    hal_time_t *clock = hal_time_posix();
+    uint64_t t = hal_time_now_us(clock);
     if (hal_ecu_loop_init(&loop, &ecu, &cfg, can, nvm, t) != PFE_OK) {
         fprintf(stderr, "pfe_ecu: invalid configuration\n");
         hal_nvm_file_close(nvm);
@@ -176,14 +166,14 @@ int main(int argc, char **argv)
     while (!g_stop && (deadline < end)) {
         (void)hal_ecu_loop_step(&loop, deadline);
         deadline += PFE_ECU_TICK_US;
-        t = now_us();
+        t = hal_time_now_us(clock);
         if (t > (deadline + PFE_ECU_TICK_US)) {
             /* Late by more than a tick: count the ticks lost and start again from now. */
             const uint64_t lost = (t - deadline) / PFE_ECU_TICK_US;
             pfe_ecu_note_overrun(&ecu, (lost > UINT32_MAX) ? UINT32_MAX : (uint32_t)lost);
             deadline += lost * PFE_ECU_TICK_US;
         }
-        sleep_until_us(deadline);
+        sleep_until_us(clock, deadline);
     }
     if (hal_ecu_loop_save(&loop) != 0) {
         fprintf(stderr, "pfe_ecu: final NVM write failed: %s\n", strerror(errno));

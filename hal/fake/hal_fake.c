@@ -9,6 +9,25 @@
 void hal_fake_bus_init(hal_fake_bus_t *bus)
 {
     memset(bus, 0, sizeof *bus);
+    bus->time.bus = bus;
+}
+
+hal_time_t *hal_fake_time(hal_fake_bus_t *bus)
+{
+    return &bus->time;
+}
+
+uint64_t hal_time_now_us(hal_time_t *time)
+{
+    return time->bus->now_us;
+}
+
+int hal_time_wait_until_us(hal_time_t *time, uint64_t deadline_us)
+{
+    if (deadline_us > time->bus->now_us) {
+        time->bus->now_us = deadline_us;
+    }
+    return 0;
 }
 
 hal_can_t *hal_fake_open(hal_fake_bus_t *bus)

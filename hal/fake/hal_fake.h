@@ -19,6 +19,7 @@
 #include "hal/hal_can.h"
 #include "hal/hal_can_mem.h"
 #include "hal/hal_nvm.h"
+#include "hal/hal_time.h"
 
 #define HAL_FAKE_RX_QUEUE 256U
 #define HAL_FAKE_MAX_HANDLES 4U
@@ -33,8 +34,14 @@ struct hal_can {
     uint32_t tx_space;               /* frames the transmit queue takes before HAL_EAGAIN */
 };
 
+/* The bus's clock as a hal_time_t (hal_fake_time()). */
+struct hal_time {
+    hal_fake_bus_t *bus;
+};
+
 struct hal_fake_bus {
-    uint64_t now_us;                 /* the clock: moves only with hal_fake_advance_us() */
+    uint64_t now_us;                 /* the clock: moves only with hal_fake_advance_us() or a wait */
+    struct hal_time time;
     struct hal_can handle[HAL_FAKE_MAX_HANDLES];
 };
 
@@ -48,6 +55,9 @@ void hal_fake_close(hal_can_t *can);
 void hal_fake_set_tx_space(hal_can_t *can, uint32_t frames);
 void hal_fake_advance_us(hal_fake_bus_t *bus, uint64_t us);
 uint64_t hal_fake_now_us(const hal_fake_bus_t *bus);
+/* The bus's clock through hal/hal_time.h: hal_time_wait_until_us() moves it
+ * to the deadline at once. */
+hal_time_t *hal_fake_time(hal_fake_bus_t *bus);
 
 struct hal_nvm {
     uint8_t slot[PFE_NVM_SLOTS][PFE_NVM_RECORD_SIZE];

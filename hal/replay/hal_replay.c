@@ -352,6 +352,7 @@ void hal_replay_init(hal_replay_bus_t *bus, hal_replay_read_fn read, void *read_
                      hal_replay_write_fn write, void *write_ctx, const char *record_ifname)
 {
     memset(bus, 0, sizeof *bus);
+    bus->time.bus = bus;
     bus->read = read;
     bus->read_ctx = read_ctx;
     bus->write = write;
@@ -396,6 +397,22 @@ void hal_replay_advance_to(hal_replay_bus_t *bus, uint64_t now_us)
 uint64_t hal_replay_now_us(const hal_replay_bus_t *bus)
 {
     return bus->now_us;
+}
+
+hal_time_t *hal_replay_time(hal_replay_bus_t *bus)
+{
+    return &bus->time;
+}
+
+uint64_t hal_time_now_us(hal_time_t *time)
+{
+    return time->bus->now_us;
+}
+
+int hal_time_wait_until_us(hal_time_t *time, uint64_t deadline_us)
+{
+    hal_replay_advance_to(time->bus, deadline_us);
+    return 0;
 }
 
 hal_can_t *hal_replay_open(hal_replay_bus_t *bus)

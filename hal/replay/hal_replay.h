@@ -47,6 +47,7 @@
 #include "hal/hal_can.h"
 #include "hal/hal_can_mem.h"
 #include "hal/hal_nvm.h"
+#include "hal/hal_time.h"
 
 #define HAL_REPLAY_MAX_HANDLES 2U
 #define HAL_REPLAY_RX_QUEUE 128U     /* frames per handle between two receives; more are dropped */
@@ -95,9 +96,15 @@ struct hal_can {
     hal_can_rx_t rx[HAL_REPLAY_RX_QUEUE];
 };
 
+/* The bus's clock as a hal_time_t (hal_replay_time()). */
+struct hal_time {
+    hal_replay_bus_t *bus;
+};
+
 /* The bus. Fields are the backend's; the caller owns the storage. */
 struct hal_replay_bus {
     uint64_t now_us;                 /* bus clock: log time, microseconds */
+    struct hal_time time;
     struct hal_can handle[HAL_REPLAY_MAX_HANDLES];
     /* input */
     hal_replay_read_fn read;
@@ -140,6 +147,11 @@ bool hal_replay_next_us(const hal_replay_bus_t *bus, uint64_t *t_us);
 void hal_replay_advance_to(hal_replay_bus_t *bus, uint64_t now_us);
 
 uint64_t hal_replay_now_us(const hal_replay_bus_t *bus);
+
+/* The bus clock through hal/hal_time.h: hal_time_wait_until_us() is
+ * hal_replay_advance_to() (it returns at once, the log's frames due by
+ * then on the bus). */
+hal_time_t *hal_replay_time(hal_replay_bus_t *bus);
 
 /* Opens a handle: NULL when HAL_REPLAY_MAX_HANDLES are open. */
 hal_can_t *hal_replay_open(hal_replay_bus_t *bus);

@@ -35,7 +35,7 @@ bool hal_replay_ecu_feed(hal_replay_ecu_t *run)
         run->now_us += ticks * PFE_ECU_TICK_US;
         run->gaps_skipped++;
     }
-    hal_replay_advance_to(&run->bus, run->now_us);
+    (void)hal_time_wait_until_us(hal_replay_time(&run->bus), run->now_us);
     return true;
 }
 

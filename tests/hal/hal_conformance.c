@@ -377,6 +377,28 @@ static void test_stats_count_frames(void **state)
 
 /* ------------------------------------------------------------------ run */
 
+static void test_clock_waits_reach_their_deadline(void **state)
+{
+    (void)state;
+    hal_time_t *clock = backend->time;
+    const uint64_t t0 = hal_time_now_us(clock);
+    assert_int_equal(hal_time_wait_until_us(clock, t0 + 2000U), 0);
+    const uint64_t t1 = hal_time_now_us(clock);
+    assert_true(t1 >= (t0 + 2000U));
+    /* A deadline in the past: at once, and the clock does not go back. */
+    assert_int_equal(hal_time_wait_until_us(clock, t0), 0);
+    const uint64_t t2 = hal_time_now_us(clock);
+    assert_true(t2 >= t1);
+    assert_true((t2 - t1) < 1000000U);
+    /* Ten 10 ms ticks on absolute deadlines take at least 100 ms. */
+    uint64_t deadline = t2;
+    for (uint32_t k = 0U; k < 10U; k++) {
+        deadline += 10000U;
+        assert_int_equal(hal_time_wait_until_us(clock, deadline), 0);
+    }
+    assert_true(hal_time_now_us(clock) >= (t2 + 100000U));
+}
+
 int hal_conformance_run(const hal_conformance_backend_t *b)
 {
     backend = b;
@@ -402,5 +424,12 @@ int hal_conformance_run(const hal_conformance_backend_t *b)
         cmocka_unit_test_setup_teardown(test_timestamps_never_decrease, open_pair, close_pair),
         cmocka_unit_test_setup_teardown(test_stats_count_frames, open_pair, close_pair),
     };
-    return cmocka_run_group_tests_name(b->name, tests, NULL, NULL);
+    int failed = cmocka_run_group_tests_name(b->name, tests, NULL, NULL);
+    if (b->time != NULL) {
+        const struct CMUnitTest clock_tests[] = {
+            cmocka_unit_test(test_clock_waits_reach_their_deadline),
+        };
+        failed += cmocka_run_group_tests_name(b->name, clock_tests, NULL, NULL);
+    }
+    return failed;
 }

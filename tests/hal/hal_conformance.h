@@ -13,7 +13,8 @@
  * does not receive its own frames; HAL_EINVAL for frames that cannot exist;
  * filters (a J1939 PGN with priority and source address masked, several
  * filters, removal, HAL_ENOSPC after HAL_CAN_MAX_FILTERS); non-decreasing
- * timestamps; statistics.
+ * timestamps; statistics; the clock: never decreasing, waits that reach
+ * their deadline, a deadline in the past returning at once.
  *
  * A filter test never waits for a frame that must not come: it sends the
  * rejected frames, then one that is accepted, and checks that the accepted
@@ -25,6 +26,7 @@
 #include <stdint.h>
 
 #include "hal/hal_can.h"
+#include "hal/hal_time.h"
 
 typedef struct {
     const char *name;   /* the CMocka group's name, e.g. "hal_socketcan(vcan0)" */
@@ -39,6 +41,8 @@ typedef struct {
     /* How many idle calls a frame may take to arrive before the test counts
      * it lost (0: must be there right after hal_can_send). */
     uint32_t max_idle;
+    /* The backend's clock (hal/hal_time.h), checked too when not NULL. */
+    hal_time_t *time;
 } hal_conformance_backend_t;
 
 /*

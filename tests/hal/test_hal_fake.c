@@ -37,6 +37,6 @@ int main(void)
 {
     hal_fake_bus_init(&g_bus);
     const hal_conformance_backend_t backend = {"hal_fake", &g_bus, fake_open, fake_close,
-                                               fake_idle, 0U};
+                                               fake_idle, 0U, hal_fake_time(&g_bus)};
     return hal_conformance_run(&backend);
 }

@@ -383,7 +383,7 @@ int main(void)
 {
     hal_replay_init(&g_bus, NULL, NULL, NULL, NULL, NULL);
     const hal_conformance_backend_t backend = {"hal_replay", &g_bus, bus_open, bus_close, bus_idle,
-                                               0U};
+                                               0U, hal_replay_time(&g_bus)};
     int failed = hal_conformance_run(&backend);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_log_frames_arrive_at_their_time),

@@ -25,6 +25,7 @@
 
 #include <cmocka.h>
 
+#include "hal/posix/hal_time_posix.h"
 #include "hal/socketcan/hal_socketcan.h"
 #include "tests/hal/hal_conformance.h"
 
@@ -265,6 +266,7 @@ int main(int argc, char **argv)
         .close = sc_close,
         .idle = sc_idle,
         .max_idle = 2000U, /* 2 s: generous for a kernel under QEMU's TCG */
+        .time = hal_time_posix(),
     };
     int failed = hal_conformance_run(&backend);
 
