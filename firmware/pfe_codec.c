@@ -6,6 +6,18 @@
 
 #include "pfe_calib.h"
 
+/* The encoders' per-signal steps (payload_put(), enc_put()) are forced
+ * inline: at each call the signal is a constant entry of pfe_codec_signals[],
+ * so its position, length and limits fold into a few instructions, and the
+ * image gets smaller rather than larger. On the Cortex-M4 (GCC 12, -O2 -flto)
+ * the ECU's PFE_Status, twelve signals, took about 640 instructions with
+ * calls and takes about 170 inlined. */
+#if defined(__GNUC__)
+#define ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define ALWAYS_INLINE inline
+#endif
+
 /* ------------------------------------------------------------ tables */
 
 #define RX PFE_CODEC_DIR_RX
@@ -182,20 +194,37 @@ const pfe_codec_message_t *pfe_codec_find_message(uint32_t id)
 
 /* ------------------------------------------------------------ raw access */
 
-static uint64_t load_le64(const uint8_t data[PFE_CAN_MAX_DLC])
+/* A payload as two 32-bit words, bytes 0..3 and 4..7, each little endian:
+ * the Cortex-M4 shifts a 32-bit word in one instruction, a 64-bit one in
+ * about eight. */
+typedef struct {
+    uint32_t lo;
+    uint32_t hi;
+} payload_t;
+
+/* Written out byte by byte, so that the order is the DBC's on any host; GCC
+ * merges each word into one load or store on a little-endian target (seen on
+ * the Cortex-M4 with GCC 12). */
+static payload_t payload_load(const uint8_t data[PFE_CAN_MAX_DLC])
 {
-    uint64_t v = 0U;
-    for (uint32_t i = PFE_CAN_MAX_DLC; i > 0U; i--) {
-        v = (v << 8) | (uint64_t)data[i - 1U];
-    }
-    return v;
+    const payload_t p = {
+        (uint32_t)data[0] | ((uint32_t)data[1] << 8) | ((uint32_t)data[2] << 16) |
+            ((uint32_t)data[3] << 24),
+        (uint32_t)data[4] | ((uint32_t)data[5] << 8) | ((uint32_t)data[6] << 16) |
+            ((uint32_t)data[7] << 24)};
+    return p;
 }
 
-static void store_le64(uint8_t data[PFE_CAN_MAX_DLC], uint64_t v)
+static void payload_store(uint8_t data[PFE_CAN_MAX_DLC], payload_t p)
 {
-    for (uint32_t i = 0U; i < PFE_CAN_MAX_DLC; i++) {
-        data[i] = (uint8_t)(v >> (8U * i));
-    }
+    data[0] = (uint8_t)p.lo;
+    data[1] = (uint8_t)(p.lo >> 8);
+    data[2] = (uint8_t)(p.lo >> 16);
+    data[3] = (uint8_t)(p.lo >> 24);
+    data[4] = (uint8_t)p.hi;
+    data[5] = (uint8_t)(p.hi >> 8);
+    data[6] = (uint8_t)(p.hi >> 16);
+    data[7] = (uint8_t)(p.hi >> 24);
 }
 
 static bool sig_fits(const pfe_codec_signal_t *sig)
@@ -209,12 +238,48 @@ static uint32_t sig_mask(const pfe_codec_signal_t *sig)
     return (sig->length >= 32U) ? UINT32_MAX : (((uint32_t)1U << sig->length) - 1U);
 }
 
+/* The signal's bits of a payload; the signal fits (sig_fits()). Every shift
+ * count is 0 .. 31. */
+static uint32_t payload_get(payload_t p, const pfe_codec_signal_t *sig)
+{
+    const uint32_t start = sig->start_bit;
+    uint32_t v;
+    if (start >= 32U) {
+        v = p.hi >> (start - 32U);
+    } else if (start == 0U) {
+        v = p.lo;
+    } else {
+        v = (p.lo >> start) | (p.hi << (32U - start)); /* straddles, or bits of lo only */
+    }
+    return v & sig_mask(sig);
+}
+
+/* Writes raw (masked to the length) into the signal's bits; the signal fits
+ * (sig_fits()). Every shift count is 0 .. 31. */
+static ALWAYS_INLINE void payload_put(payload_t *p, const pfe_codec_signal_t *sig, uint32_t raw)
+{
+    const uint32_t start = sig->start_bit;
+    const uint32_t m = sig_mask(sig);
+    const uint32_t v = raw & m;
+    if (start >= 32U) {
+        const uint32_t s = start - 32U;
+        p->hi = (p->hi & ~(m << s)) | (v << s);
+    } else {
+        /* bits start .. 31 of lo; any higher bits go to the bottom of hi */
+        p->lo = (p->lo & ~(m << start)) | (v << start);
+        if ((start + (uint32_t)sig->length) > 32U) {
+            const uint32_t s = 32U - start; /* 1 .. 31: start is not 0 here */
+            p->hi = (p->hi & ~(m >> s)) | (v >> s);
+        }
+    }
+}
+
 uint32_t pfe_codec_raw_get(const uint8_t data[PFE_CAN_MAX_DLC], const pfe_codec_signal_t *sig)
 {
     if ((data == NULL) || (sig == NULL) || !sig_fits(sig)) {
         return 0U;
     }
-    return (uint32_t)(load_le64(data) >> sig->start_bit) & sig_mask(sig);
+    return payload_get(payload_load(data), sig);
 }
 
 void pfe_codec_raw_put(uint8_t data[PFE_CAN_MAX_DLC], const pfe_codec_signal_t *sig, uint32_t raw)
@@ -222,9 +287,9 @@ void pfe_codec_raw_put(uint8_t data[PFE_CAN_MAX_DLC], const pfe_codec_signal_t *
     if ((data == NULL) || (sig == NULL) || !sig_fits(sig)) {
         return;
     }
-    const uint64_t mask = (uint64_t)sig_mask(sig) << sig->start_bit;
-    const uint64_t v = (load_le64(data) & ~mask) | (((uint64_t)raw << sig->start_bit) & mask);
-    store_le64(data, v);
+    payload_t p = payload_load(data);
+    payload_put(&p, sig, raw);
+    payload_store(data, p);
 }
 
 pfe_sig_state_t pfe_codec_raw_state(const pfe_codec_signal_t *sig, uint32_t raw)
@@ -331,7 +396,7 @@ static const pfe_sig_u64_t u64_na = {0U, PFE_SIG_NOT_AVAILABLE};
 /* Unit conversions of the received raw values (raw within its valid range). */
 static int32_t speed_mm_s_of_raw(uint32_t raw)       /* 1/256 km/h = 625/576 mm/s */
 {
-    return (int32_t)((((uint64_t)raw * 625U) + 288U) / 576U);
+    return (int32_t)(((raw * 625U) + 288U) / 576U);  /* raw <= 0xFAFF: below 2^26 */
 }
 
 static int32_t angle_udeg_of_raw(uint32_t raw)       /* 0.002 deg, offset -64 deg */
@@ -397,9 +462,11 @@ static pfe_sig_u32_t dec_u32_times(const pfe_can_frame_t *frame, pfe_sig_index_t
     return out;
 }
 
-/* Encoding: one message's payload and the mask of clamped signals. */
+/* Encoding: one message's payload, built in a register and stored once by
+ * enc_end(), and the mask of clamped signals. */
 typedef struct {
     pfe_can_frame_t *frame;
+    payload_t payload;
     uint32_t first;
     uint32_t clamped;
 } enc_t;
@@ -413,8 +480,9 @@ static int enc_begin(enc_t *e, pfe_can_frame_t *frame, pfe_msg_index_t msg, uint
     const pfe_codec_message_t *m = &pfe_codec_messages[msg];
     frame->id = pfe_j1939_id(m->priority, m->pgn, destination, source);
     frame->dlc = m->dlc;
-    (void)memset(frame->data, 0xFF, sizeof frame->data);
     e->frame = frame;
+    e->payload.lo = UINT32_MAX; /* unused bits are sent as 1 */
+    e->payload.hi = UINT32_MAX;
     e->first = m->first_signal;
     e->clamped = 0U;
     return PFE_OK;
@@ -422,11 +490,11 @@ static int enc_begin(enc_t *e, pfe_can_frame_t *frame, pfe_msg_index_t msg, uint
 
 /* Writes a value already in raw counts (any int64), clamped to the valid
  * range, or the code for a NOT_AVAILABLE or ERROR state. */
-static void enc_put(enc_t *e, pfe_sig_index_t i, pfe_sig_state_t state, int64_t raw)
+static ALWAYS_INLINE void enc_put(enc_t *e, pfe_sig_index_t i, pfe_sig_state_t state, int64_t raw)
 {
     const pfe_codec_signal_t *sig = &pfe_codec_signals[i];
     if ((state == PFE_SIG_NOT_AVAILABLE) || (state == PFE_SIG_ERROR)) {
-        pfe_codec_raw_put(e->frame->data, sig, pfe_codec_raw_code(sig, state));
+        payload_put(&e->payload, sig, pfe_codec_raw_code(sig, state));
         return;
     }
     int64_t r = raw;
@@ -434,11 +502,13 @@ static void enc_put(enc_t *e, pfe_sig_index_t i, pfe_sig_state_t state, int64_t 
         r = (r < (int64_t)sig->raw_min) ? (int64_t)sig->raw_min : (int64_t)sig->raw_max;
         e->clamped |= (uint32_t)1U << ((uint32_t)i - e->first);
     }
-    pfe_codec_raw_put(e->frame->data, sig, (uint32_t)r);
+    payload_put(&e->payload, sig, (uint32_t)r);
 }
 
+/* Every encoder ends here: the only write of the payload. */
 static int enc_end(const enc_t *e)
 {
+    payload_store(e->frame->data, e->payload);
     return (int)e->clamped;
 }
 
@@ -458,9 +528,13 @@ static int64_t raw_of_grade_ppm(int32_t ppm)
     return div_round_i64((int64_t)ppm + 640000, 20);
 }
 
+/* nl_s * 9 / 125000 rounded (halves up) as floor((n + 62500) / 125000), in
+ * two divisions cheap on the Cortex-M4 (pfe_udiv_u64()): by 1000, then by
+ * 125. n + 62500 < 2^36. */
 static int64_t raw_of_fuel_rate_nl_s(uint32_t nl_s)
 {
-    return (int64_t)pfe_udiv_round_u64((uint64_t)nl_s * 9U, 125000U);
+    const uint64_t n = ((uint64_t)nl_s * 9U) + 62500U;
+    return (int64_t)pfe_udiv_u64(pfe_udiv_u64(n, 1000U, NULL), 125U, NULL);
 }
 
 static int64_t raw_of_unsigned(uint64_t value, uint64_t unit)

@@ -283,6 +283,73 @@ static void test_every_signal_boundaries_and_codes(void **state)
     }
 }
 
+/* Signals of any position, including across the middle of the payload,
+ * where the codec splits it into two 32-bit words. `field` is the payload
+ * with the signal's bits set and no other. */
+static void check_put_get(uint32_t start_bit, uint32_t length, uint32_t raw, const uint8_t expected[8],
+                          const uint8_t field[8])
+{
+    pfe_codec_signal_t sig;
+    memset(&sig, 0, sizeof sig);
+    sig.start_bit = (uint8_t)start_bit;
+    sig.length = (uint8_t)length;
+    uint8_t data[8];
+    memset(data, 0, sizeof data);
+    pfe_codec_raw_put(data, &sig, raw);
+    assert_memory_equal(data, expected, 8U);
+    assert_int_equal(pfe_codec_raw_get(data, &sig), raw);
+    /* clearing the signal in a payload of ones leaves every other bit set */
+    memset(data, 0xFF, sizeof data);
+    pfe_codec_raw_put(data, &sig, 0U);
+    for (uint32_t i = 0U; i < 8U; i++) {
+        assert_int_equal(data[i], (uint8_t)~field[i]);
+    }
+    assert_int_equal(pfe_codec_raw_get(data, &sig), 0U);
+    pfe_codec_raw_put(data, &sig, raw);
+    assert_int_equal(pfe_codec_raw_get(data, &sig), raw);
+}
+
+static void test_raw_put_get_any_position(void **state)
+{
+    (void)state;
+    static const uint8_t lo32[8] = {0x78, 0x56, 0x34, 0x12, 0x00, 0x00, 0x00, 0x00};
+    static const uint8_t lo32_field[8] = {0xFF, 0xFF, 0xFF, 0xFF, 0x00, 0x00, 0x00, 0x00};
+    check_put_get(0U, 32U, 0x12345678UL, lo32, lo32_field);
+    static const uint8_t hi32[8] = {0x00, 0x00, 0x00, 0x00, 0xEF, 0xCD, 0xAB, 0x89};
+    static const uint8_t hi32_field[8] = {0x00, 0x00, 0x00, 0x00, 0xFF, 0xFF, 0xFF, 0xFF};
+    check_put_get(32U, 32U, 0x89ABCDEFUL, hi32, hi32_field);
+    /* bit 31 and bit 32: the top of byte 3 and the bottom of byte 4 */
+    static const uint8_t mid2[8] = {0x00, 0x00, 0x00, 0x80, 0x01, 0x00, 0x00, 0x00};
+    check_put_get(31U, 2U, 3U, mid2, mid2);
+    /* 0xABCDEF << 20 = 0x0ABCDEF00000, 0xFFFFFF << 20 = 0x0FFFFFF00000 */
+    static const uint8_t mid24[8] = {0x00, 0x00, 0xF0, 0xDE, 0xBC, 0x0A, 0x00, 0x00};
+    static const uint8_t mid24_field[8] = {0x00, 0x00, 0xF0, 0xFF, 0xFF, 0x0F, 0x00, 0x00};
+    check_put_get(20U, 24U, 0xABCDEFUL, mid24, mid24_field);
+    static const uint8_t from1[8] = {0xFE, 0xFF, 0xFF, 0xFF, 0x01, 0x00, 0x00, 0x00};
+    check_put_get(1U, 32U, 0xFFFFFFFFUL, from1, from1);
+    static const uint8_t top31[8] = {0x00, 0x00, 0x00, 0x00, 0xFE, 0xFF, 0xFF, 0xFF};
+    check_put_get(33U, 31U, 0x7FFFFFFFUL, top31, top31);
+    static const uint8_t bit63[8] = {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80};
+    check_put_get(63U, 1U, 1U, bit63, bit63);
+    static const uint8_t bit0[8] = {0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00};
+    check_put_get(0U, 1U, 1U, bit0, bit0);
+    /* signals that do not fit: get reads 0, put changes nothing */
+    static const uint8_t shapes[3][2] = {{0U, 0U}, {0U, 33U}, {40U, 25U}};
+    for (uint32_t k = 0U; k < 3U; k++) {
+        pfe_codec_signal_t sig;
+        memset(&sig, 0, sizeof sig);
+        sig.start_bit = shapes[k][0];
+        sig.length = shapes[k][1];
+        uint8_t data[8];
+        memset(data, 0x5A, sizeof data);
+        assert_int_equal(pfe_codec_raw_get(data, &sig), 0U);
+        pfe_codec_raw_put(data, &sig, 0U);
+        for (uint32_t i = 0U; i < 8U; i++) {
+            assert_int_equal(data[i], 0x5A);
+        }
+    }
+}
+
 static void test_j1939_ranges_by_length(void **state)
 {
     (void)state;
@@ -1417,6 +1484,7 @@ int main(void)
         cmocka_unit_test(test_message_table),
         cmocka_unit_test(test_signal_table_is_consistent),
         cmocka_unit_test(test_every_signal_boundaries_and_codes),
+        cmocka_unit_test(test_raw_put_get_any_position),
         cmocka_unit_test(test_j1939_ranges_by_length),
         cmocka_unit_test(test_ccvs1_decode),
         cmocka_unit_test(test_decoders_reject_wrong_frames),
