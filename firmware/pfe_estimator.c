@@ -142,15 +142,23 @@ const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_i
     return &est->out;
 }
 
+/* 10 pL to uL, rounded down. 100000 is above the divisor of the cheap 32-bit
+ * path of pfe_udiv_u64(), so it divides by 1000 and then by 100 (the same
+ * result as one division: floor(floor(n / a) / b) = floor(n / (a b))). */
+static uint64_t ul_of_10pl(uint64_t fuel_10pl)
+{
+    return pfe_udiv_u64(pfe_udiv_u64(fuel_10pl, 1000U, NULL), TEN_PL_PER_UL / 1000U, NULL);
+}
+
 uint64_t pfe_estimator_fuel_used_ul(const pfe_estimator_t *est, int32_t position)
 {
     if (position == PFE_EST_PLATOON) {
-        return est->fuel_used_10pl / TEN_PL_PER_UL;
+        return ul_of_10pl(est->fuel_used_10pl);
     }
     if ((position < 0) || ((uint32_t)position >= est->platoon->n_vehicles)) {
         return 0U;
     }
-    return est->pos_fuel_used_10pl[position] / TEN_PL_PER_UL;
+    return ul_of_10pl(est->pos_fuel_used_10pl[position]);
 }
 
 int pfe_estimator_set_fuel_used_ul(pfe_estimator_t *est, int32_t position, uint64_t fuel_ul)

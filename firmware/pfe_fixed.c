@@ -1,6 +1,8 @@
 /* pfe_fixed.c - saturating integer arithmetic (contract in pfe_fixed.h). */
 #include "pfe_fixed.h"
 
+#include <stddef.h>
+
 int32_t pfe_sat_i32(int64_t x)
 {
     if (x > (int64_t)INT32_MAX) {
@@ -50,12 +52,49 @@ uint64_t pfe_sat_add_u64(uint64_t a, uint64_t b)
     return (a > (UINT64_MAX - b)) ? UINT64_MAX : (a + b);
 }
 
+/* Long division by 16-bit digits: each partial dividend r * 2^16 + digit is
+ * below den * 2^16 <= 2^32, so every step is a 32-bit division. */
+static uint64_t udiv_small(uint64_t num, uint32_t den, uint32_t *rem)
+{
+    const uint32_t hi = (uint32_t)(num >> 32);
+    const uint32_t lo = (uint32_t)num;
+    const uint32_t q_hi = hi / den;
+    uint32_t r = hi - (q_hi * den);
+    const uint32_t d1 = (r << 16) | (lo >> 16);
+    const uint32_t q1 = d1 / den;
+    r = d1 - (q1 * den);
+    const uint32_t d0 = (r << 16) | (lo & 0xFFFFU);
+    const uint32_t q0 = d0 / den;
+    *rem = d0 - (q0 * den);
+    return ((uint64_t)q_hi << 32) | ((uint64_t)q1 << 16) | q0;
+}
+
+uint64_t pfe_udiv_u64(uint64_t num, uint64_t den, uint64_t *rem)
+{
+    uint64_t q = 0U;
+    uint64_t r = 0U;
+    if ((den != 0U) && (den <= PFE_UDIV_SMALL_MAX)) {
+        uint32_t r32;
+        q = udiv_small(num, (uint32_t)den, &r32);
+        r = r32;
+    } else if (den != 0U) {
+        q = num / den;
+        r = num % den;
+    } else {
+        /* division by zero: 0, remainder 0, by contract */
+    }
+    if (rem != NULL) {
+        *rem = r;
+    }
+    return q;
+}
+
 uint64_t pfe_udiv_round_u64(uint64_t num, uint64_t den)
 {
     if (den == 0U) {
         return 0U;
     }
-    const uint64_t q = num / den;
-    const uint64_t r = num % den;
+    uint64_t r;
+    const uint64_t q = pfe_udiv_u64(num, den, &r);
     return (r >= (den - r)) ? (q + 1U) : q;
 }

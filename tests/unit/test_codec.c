@@ -1,7 +1,9 @@
 /* Unit tests: J1939 ids (pfe_can) and the frame codec (pfe_codec).
  * Expected bytes and values are hand-computed from can_dbc/pfe.dbc and
  * REFERENCE.md section 3; tangents from a 40-digit reference. Runs on the
- * host and on the Cortex-M4: no float, no files, large objects static. */
+ * host and on the Cortex-M4: no files, large objects static, and no float
+ * but the double-precision tangent that the pitch-to-grade conversion is
+ * checked against. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stdbool.h>
@@ -280,6 +282,73 @@ static void test_every_signal_boundaries_and_codes(void **state)
         pfe_codec_raw_put(data, sig, 0xFFFFFFFFUL); /* masked to the length */
         assert_int_equal(pfe_codec_raw_get(data, sig), (sig->length == 32U) ? 0xFFFFFFFFUL
                                                                               : ((1UL << sig->length) - 1UL));
+    }
+}
+
+/* Signals of any position, including across the middle of the payload,
+ * where the codec splits it into two 32-bit words. `field` is the payload
+ * with the signal's bits set and no other. */
+static void check_put_get(uint32_t start_bit, uint32_t length, uint32_t raw, const uint8_t expected[8],
+                          const uint8_t field[8])
+{
+    pfe_codec_signal_t sig;
+    memset(&sig, 0, sizeof sig);
+    sig.start_bit = (uint8_t)start_bit;
+    sig.length = (uint8_t)length;
+    uint8_t data[8];
+    memset(data, 0, sizeof data);
+    pfe_codec_raw_put(data, &sig, raw);
+    assert_memory_equal(data, expected, 8U);
+    assert_int_equal(pfe_codec_raw_get(data, &sig), raw);
+    /* clearing the signal in a payload of ones leaves every other bit set */
+    memset(data, 0xFF, sizeof data);
+    pfe_codec_raw_put(data, &sig, 0U);
+    for (uint32_t i = 0U; i < 8U; i++) {
+        assert_int_equal(data[i], (uint8_t)~field[i]);
+    }
+    assert_int_equal(pfe_codec_raw_get(data, &sig), 0U);
+    pfe_codec_raw_put(data, &sig, raw);
+    assert_int_equal(pfe_codec_raw_get(data, &sig), raw);
+}
+
+static void test_raw_put_get_any_position(void **state)
+{
+    (void)state;
+    static const uint8_t lo32[8] = {0x78, 0x56, 0x34, 0x12, 0x00, 0x00, 0x00, 0x00};
+    static const uint8_t lo32_field[8] = {0xFF, 0xFF, 0xFF, 0xFF, 0x00, 0x00, 0x00, 0x00};
+    check_put_get(0U, 32U, 0x12345678UL, lo32, lo32_field);
+    static const uint8_t hi32[8] = {0x00, 0x00, 0x00, 0x00, 0xEF, 0xCD, 0xAB, 0x89};
+    static const uint8_t hi32_field[8] = {0x00, 0x00, 0x00, 0x00, 0xFF, 0xFF, 0xFF, 0xFF};
+    check_put_get(32U, 32U, 0x89ABCDEFUL, hi32, hi32_field);
+    /* bit 31 and bit 32: the top of byte 3 and the bottom of byte 4 */
+    static const uint8_t mid2[8] = {0x00, 0x00, 0x00, 0x80, 0x01, 0x00, 0x00, 0x00};
+    check_put_get(31U, 2U, 3U, mid2, mid2);
+    /* 0xABCDEF << 20 = 0x0ABCDEF00000, 0xFFFFFF << 20 = 0x0FFFFFF00000 */
+    static const uint8_t mid24[8] = {0x00, 0x00, 0xF0, 0xDE, 0xBC, 0x0A, 0x00, 0x00};
+    static const uint8_t mid24_field[8] = {0x00, 0x00, 0xF0, 0xFF, 0xFF, 0x0F, 0x00, 0x00};
+    check_put_get(20U, 24U, 0xABCDEFUL, mid24, mid24_field);
+    static const uint8_t from1[8] = {0xFE, 0xFF, 0xFF, 0xFF, 0x01, 0x00, 0x00, 0x00};
+    check_put_get(1U, 32U, 0xFFFFFFFFUL, from1, from1);
+    static const uint8_t top31[8] = {0x00, 0x00, 0x00, 0x00, 0xFE, 0xFF, 0xFF, 0xFF};
+    check_put_get(33U, 31U, 0x7FFFFFFFUL, top31, top31);
+    static const uint8_t bit63[8] = {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80};
+    check_put_get(63U, 1U, 1U, bit63, bit63);
+    static const uint8_t bit0[8] = {0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00};
+    check_put_get(0U, 1U, 1U, bit0, bit0);
+    /* signals that do not fit: get reads 0, put changes nothing */
+    static const uint8_t shapes[3][2] = {{0U, 0U}, {0U, 33U}, {40U, 25U}};
+    for (uint32_t k = 0U; k < 3U; k++) {
+        pfe_codec_signal_t sig;
+        memset(&sig, 0, sizeof sig);
+        sig.start_bit = shapes[k][0];
+        sig.length = shapes[k][1];
+        uint8_t data[8];
+        memset(data, 0x5A, sizeof data);
+        assert_int_equal(pfe_codec_raw_get(data, &sig), 0U);
+        pfe_codec_raw_put(data, &sig, 0U);
+        for (uint32_t i = 0U; i < 8U; i++) {
+            assert_int_equal(data[i], 0x5A);
+        }
     }
 }
 
@@ -610,6 +679,94 @@ static void test_grade_from_pitch(void **state)
         assert_true(g >= prev);
         prev = g;
     }
+}
+
+/* tan x in double precision for |x| <= 0.5: sine and cosine by their Taylor
+ * series to x^25 and x^24 (the first terms left out are below 1e-23 there),
+ * then their ratio: a few units in the last place of the exact tangent.
+ * The unit tests link no libm; tests/host/test_dbc_codec.c checks the codec
+ * against libm's tan() as well, at every SPN 3318 value. */
+static double ref_tan(double x)
+{
+    /* 1 / ((2k)(2k + 1)) and 1 / ((2k - 1)(2k)), k = 1 .. 12 */
+    static const double sin_inv[12] = {1.0 / 6.0,   1.0 / 20.0,  1.0 / 42.0,  1.0 / 72.0,
+                                       1.0 / 110.0, 1.0 / 156.0, 1.0 / 210.0, 1.0 / 272.0,
+                                       1.0 / 342.0, 1.0 / 420.0, 1.0 / 506.0, 1.0 / 600.0};
+    static const double cos_inv[12] = {1.0 / 2.0,   1.0 / 12.0,  1.0 / 30.0,  1.0 / 56.0,
+                                       1.0 / 90.0,  1.0 / 132.0, 1.0 / 182.0, 1.0 / 240.0,
+                                       1.0 / 306.0, 1.0 / 380.0, 1.0 / 462.0, 1.0 / 552.0};
+    const double x2 = x * x;
+    double s = 1.0;
+    double c = 1.0;
+    for (uint32_t k = 12U; k > 0U; k--) {
+        s = 1.0 - (x2 * s * sin_inv[k - 1U]);
+        c = 1.0 - (x2 * c * cos_inv[k - 1U]);
+    }
+    return (x * s) / c;
+}
+
+static double ref_grade_ppm(int32_t pitch_udeg)
+{
+    const double pi = 3.14159265358979323846;
+    return ref_tan((double)pitch_udeg * (pi / 180e6)) * 1e6;
+}
+
+static double abs_d(double v)
+{
+    return (v < 0.0) ? -v : v;
+}
+
+/* Worst error over the whole valid range: 0.5010 ppm, measured at every
+ * micro-degree of 0 .. 26565051 against long double tanl() (0.5 of it is
+ * the rounding to whole ppm, 0.0012 the series and its fixed point). */
+#define GRADE_WORST_ERROR_PPM 0.501
+
+static void test_grade_from_pitch_against_double(void **state)
+{
+    (void)state;
+    /* the reference against 40-digit tangents (ppm) */
+    static const struct {
+        int32_t pitch_udeg;
+        double exact_ppm;
+    } known[] = {
+        {28, 0.4886921905584512},        {29, 0.5061454830783988},
+        {1145800, 20000.648855647392},   {13000000, 230868.19112556311},
+        {20000000, 363970.23426620236},  {24609319, 458032.50093660603},
+        {26382906, 496032.50171777650},  {26565051, 499999.99613675757},
+    };
+    for (uint32_t k = 0U; k < sizeof known / sizeof known[0]; k++) {
+        const double r = ref_grade_ppm(known[k].pitch_udeg);
+        assert_true(abs_d(r - known[k].exact_ppm) <= (1e-9 * known[k].exact_ppm));
+    }
+    /* hand-computed results: rounding to whole ppm, either side of a half */
+    assert_int_equal(pfe_codec_grade_ppm_from_pitch(28, NULL), 0);
+    assert_int_equal(pfe_codec_grade_ppm_from_pitch(29, NULL), 1);
+    assert_int_equal(pfe_codec_grade_ppm_from_pitch(-29, NULL), -1);
+    assert_int_equal(pfe_codec_grade_ppm_from_pitch(13000000, NULL), 230868);
+    /* 496032.5017: 0.0017 above the half, rounds up */
+    assert_int_equal(pfe_codec_grade_ppm_from_pitch(26382906, NULL), 496033);
+    /* 458032.50094: the worst point, whose fixed-point value (0.0012 low at
+     * most) lies just below the half */
+    assert_int_equal(pfe_codec_grade_ppm_from_pitch(24609319, NULL), 458032);
+
+    /* Every SPN 3318 value (0.002 deg) up to 50 %, and a 1999 udeg stride
+     * between them, both signs. */
+    double worst = 0.0;
+    for (uint32_t pass = 0U; pass < 2U; pass++) {
+        const int32_t step = (pass == 0U) ? 2000 : 1999;
+        for (int32_t u = 0; u <= 26565051; u += step) {
+            bool sat = true;
+            const int32_t g = pfe_codec_grade_ppm_from_pitch(u, &sat);
+            const double err = abs_d((double)g - ref_grade_ppm(u));
+            worst = (err > worst) ? err : worst;
+            if ((err > GRADE_WORST_ERROR_PPM) || sat) {
+                fail_msg("pitch %ld udeg: %ld ppm, saturated %d", (long)u, (long)g, (int)sat);
+            }
+            assert_int_equal(pfe_codec_grade_ppm_from_pitch(-u, NULL), -g);
+        }
+    }
+    print_message("grade from pitch: worst error %ld.%04ld ppm against double\n", (long)worst,
+                  (long)((worst - (double)(long)worst) * 10000.0));
 }
 
 /* ------------------------------------------------------------ PFE_PlatoonConfig */
@@ -1417,6 +1574,7 @@ int main(void)
         cmocka_unit_test(test_message_table),
         cmocka_unit_test(test_signal_table_is_consistent),
         cmocka_unit_test(test_every_signal_boundaries_and_codes),
+        cmocka_unit_test(test_raw_put_get_any_position),
         cmocka_unit_test(test_j1939_ranges_by_length),
         cmocka_unit_test(test_ccvs1_decode),
         cmocka_unit_test(test_decoders_reject_wrong_frames),
@@ -1424,6 +1582,7 @@ int main(void)
         cmocka_unit_test(test_ccvs1_round_trip_every_raw),
         cmocka_unit_test(test_ssi_decode_encode),
         cmocka_unit_test(test_grade_from_pitch),
+        cmocka_unit_test(test_grade_from_pitch_against_double),
         cmocka_unit_test(test_platoon_config),
         cmocka_unit_test(test_grade_preview_frames),
         cmocka_unit_test(test_preview_complete_small),

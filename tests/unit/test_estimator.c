@@ -211,6 +211,58 @@ static void test_fuel_used_holds_a_trucks_lifetime(void **state)
     assert_true(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON) == UINT64_MAX / 100000U);
 }
 
+/* Fuel used is read out in uL through a division by 100000 that the
+ * Cortex-M4 does as two 32-bit long divisions (pfe_udiv_u64()). */
+static void test_udiv_u64_exact(void **state)
+{
+    (void)state;
+    uint64_t r = 1U;
+    /* 2^64 - 1 = 18446744073709551615 */
+    assert_true(pfe_udiv_u64(UINT64_MAX, 1000U, &r) == 18446744073709551ULL);
+    assert_true(r == 615U);
+    /* 2^64 - 1 = (2^16 - 1)(2^48 + 2^32 + 2^16 + 1) */
+    assert_true(pfe_udiv_u64(UINT64_MAX, 0xFFFFU, &r) == 281479271743489ULL);
+    assert_true(r == 0U);
+    /* above the 32-bit path: 2^16 */
+    assert_true(pfe_udiv_u64(UINT64_MAX, 0x10000U, &r) == 281474976710655ULL);
+    assert_true(r == 65535U);
+    assert_true(pfe_udiv_u64(12345678901234567890ULL, 7U, &r) == 1763668414462081127ULL);
+    assert_true(r == 1U);
+    assert_true(pfe_udiv_u64(12345678901234567890ULL, 65521U, &r) == 188423236843677ULL);
+    assert_true(r == 7173U);
+    assert_true(pfe_udiv_u64(12345678901234567890ULL, 100000U, &r) == 123456789012345ULL);
+    assert_true(r == 67890U);
+    assert_true(pfe_udiv_u64(12345678901234567890ULL, 1U, NULL) == 12345678901234567890ULL);
+    assert_true(pfe_udiv_u64(99U, 100U, &r) == 0U);
+    assert_true(r == 99U);
+    r = 1U;
+    assert_true(pfe_udiv_u64(5U, 0U, &r) == 0U); /* by contract */
+    assert_true(r == 0U);
+    /* rounded: halves up */
+    assert_true(pfe_udiv_round_u64(2499U, 1000U) == 2U);
+    assert_true(pfe_udiv_round_u64(2500U, 1000U) == 3U);
+    assert_true(pfe_udiv_round_u64(UINT64_MAX, 2U) == 9223372036854775808ULL);
+    assert_true(pfe_udiv_round_u64(UINT64_MAX, 0U) == 0U);
+    /* against the compiler's 64-bit division, divisors both sides of 2^16 */
+    uint64_t x = 0x9E3779B97F4A7C15ULL;
+    for (uint32_t k = 0U; k < 20000U; k++) {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        const uint64_t num = x >> (k % 40U);
+        const uint64_t den = 1U + ((x >> 40) % 0x1FFFFU);
+        assert_true(pfe_udiv_u64(num, den, &r) == (num / den));
+        assert_true(r == (num % den));
+    }
+    /* fuel used reads back what was set, up to the largest value it holds */
+    pfe_estimator_t *est = estimator_of(2U, &pfe_default_drag);
+    static const uint64_t ul[] = {0U, 1U, 99999U, 100000U, 123456789012345ULL, 184467440737095ULL};
+    for (uint32_t k = 0U; k < sizeof ul / sizeof ul[0]; k++) {
+        assert_int_equal(pfe_estimator_set_fuel_used_ul(est, 1, ul[k]), PFE_OK);
+        assert_true(pfe_estimator_fuel_used_ul(est, 1) == ul[k]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -222,6 +274,7 @@ int main(void)
         cmocka_unit_test(test_missing_and_stale_inputs),
         cmocka_unit_test(test_out_of_range_inputs_clamp_and_say_so),
         cmocka_unit_test(test_fuel_used_holds_a_trucks_lifetime),
+        cmocka_unit_test(test_udiv_u64_exact),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
