@@ -188,9 +188,6 @@ test-m4: $(DEPS_STAMP) $(addprefix $(M4_OUT)/unit_,$(addsuffix .elf,$(UNIT_TESTS
 	    $(M4_RUN) $(M4_OUT)/unit_$$t.elf; done
 	@echo "== Cortex-M4: HAL conformance on hal/replay"; $(M4_RUN) $(M4_OUT)/test_hal_replay.elf
 
-	sh tests/replay/host_vs_m4.sh $(BUILD)/replay $(HOST) $(M4_OUT)/pfe_ecu_mps2.elf \
-	    $(E2E_PAYLOAD)/drive.log
-
 # Same inputs, bit-identical outputs on the host and on the Cortex-M4.
 $(HOST)/selfcheck: sim_host/selfcheck.c sim_host/road_csv.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
