@@ -12,11 +12,7 @@
  * image gets smaller rather than larger. On the Cortex-M4 (GCC 12, -O2 -flto)
  * the ECU's PFE_Status, twelve signals, took about 640 instructions with
  * calls and takes about 170 inlined. */
-#if defined(__GNUC__)
-#define ALWAYS_INLINE __attribute__((always_inline)) inline
-#else
-#define ALWAYS_INLINE inline
-#endif
+#define ALWAYS_INLINE PFE_ALWAYS_INLINE
 
 /* ------------------------------------------------------------ tables */
 
@@ -899,6 +895,20 @@ pfe_sig_state_t pfe_preview_grade_ppm(const pfe_preview_t *pv, uint32_t index, i
         *grade_ppm = grade_ppm_of_raw(raw);
     }
     return st;
+}
+
+uint32_t pfe_preview_copy_ppm(const pfe_preview_t *pv, uint32_t first, uint32_t count,
+                              int32_t *grade_ppm)
+{
+    if ((pv == NULL) || (grade_ppm == NULL) || (pv->phase != PFE_PREVIEW_READY) ||
+        (pv->unusable_samples != 0U) || (first > pv->sample_count)) {
+        return 0U;
+    }
+    const uint32_t n = ((pv->sample_count - first) < count) ? (pv->sample_count - first) : count;
+    for (uint32_t k = 0U; k < n; k++) {
+        grade_ppm[k] = grade_ppm_of_raw(pv->raw[first + k]);
+    }
+    return n;
 }
 
 /* ------------------------------------------------------------ LFE1 */

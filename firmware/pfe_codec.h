@@ -373,6 +373,13 @@ int pfe_preview_push(pfe_preview_t *pv, const pfe_can_frame_t *frame);
  * preview not READY); *grade_ppm is 0 unless VALID. */
 pfe_sig_state_t pfe_preview_grade_ppm(const pfe_preview_t *pv, uint32_t index, int32_t *grade_ppm);
 
+/* Samples first .. first + count - 1 (fewer at the end) of a READY preview
+ * whose every sample is VALID (unusable_samples 0) into grade_ppm, in ppm
+ * as pfe_preview_grade_ppm() gives them, without its per-sample check.
+ * Returns how many, 0 when the preview is not such. */
+uint32_t pfe_preview_copy_ppm(const pfe_preview_t *pv, uint32_t first, uint32_t count,
+                              int32_t *grade_ppm);
+
 /* ------------------------------------------------------------ LFE1 (output) */
 
 typedef struct {

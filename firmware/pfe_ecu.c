@@ -32,6 +32,8 @@ static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap
     if ((pc.n_vehicles != n) || (position >= n) || (pfe_platoon_init(&ecu->platoon, &pc) != PFE_OK)) {
         return PFE_EINVAL;
     }
+    /* The prediction in progress was for the old platoon. */
+    pfe_predict_cancel(&ecu->predict);
     /* Totals carry over a change of platoon: the own truck's to its new position. */
     const uint64_t own = pfe_ecu_own_fuel_ul(ecu);
     const uint64_t platoon = pfe_ecu_platoon_fuel_ul(ecu);
@@ -51,6 +53,18 @@ int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_stat
     }
     memset(ecu, 0, sizeof *ecu);
     ecu->cfg = *cfg;
+    if (ecu->cfg.cruise == NULL) {
+        ecu->cfg.cruise = &pfe_default_cruise;
+    }
+    if (ecu->cfg.default_set_speed_mm_s == 0) {
+        ecu->cfg.default_set_speed_mm_s = PFE_ECU_DEFAULT_SET_SPEED_MM_S;
+    }
+    if ((pfe_calib_check_cruise(ecu->cfg.cruise) != PFE_OK) ||
+        (ecu->cfg.default_set_speed_mm_s < PFE_SIM_STALL_MM_S) ||
+        (ecu->cfg.default_set_speed_mm_s > PFE_SPEED_MAX_MM_S)) {
+        return PFE_EINVAL;
+    }
+    pfe_predict_init(&ecu->predict);
     ecu->own_position = 0U;
     /* Fuel used before the first configure() is zero; configure() re-applies it. */
     pfe_platoon_config_t pc;
@@ -226,6 +240,16 @@ static void on_frame(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
         const int r = pfe_preview_push(&ecu->preview_buf, f);
         if (r < 0) {
             count_up(&ecu->count.rx_rejected, 1U);
+        } else if ((ecu->preview_buf.phase == PFE_PREVIEW_RECEIVING) &&
+                   (ecu->preview_buf.next_index == 0U)) {
+            /* A header: the preview's sample 0 is under the vehicle now, and
+             * the prediction in progress was over the old one. */
+            ecu->preview_travelled_um = 0U;
+            pfe_predict_cancel(&ecu->predict);
+        } else if (r == PFE_PREVIEW_COMPLETE) {
+            ecu->preview_new = true;
+        } else {
+            /* a data frame of a preview in progress */
         }
         input_update(&ecu->preview, (ecu->preview_buf.phase == PFE_PREVIEW_READY)
                                         ? PFE_SIG_VALID : PFE_SIG_NOT_AVAILABLE, rx_us);
@@ -264,6 +288,43 @@ static pfe_sig_u64_t sig_u64(uint64_t v)
     return s;
 }
 
+static uint32_t sat_u32(uint64_t v)
+{
+    return (v > UINT32_MAX) ? UINT32_MAX : (uint32_t)v;
+}
+
+/* Step 5 of the tick: the prediction's share of work. */
+static void predict(pfe_ecu_t *ecu, uint64_t now_us)
+{
+    const bool speed_ok = ecu->speed.state == PFE_SIG_VALID;
+    if (speed_ok && (ecu->speed_mm_s > 0)) {
+        /* mm/s over 10 ms = 10 um per mm/s */
+        ecu->preview_travelled_um += (uint64_t)ecu->speed_mm_s * (PFE_ECU_TICK_US / 1000U);
+    }
+    if ((ecu->predict.phase == PFE_PREDICT_IDLE) && speed_ok &&
+        (ecu->preview_buf.phase == PFE_PREVIEW_READY) &&
+        (ecu->preview_new || ((now_us - ecu->predict_start_us) >= PFE_ECU_PREDICT_PERIOD_US))) {
+        const int32_t set_speed = (ecu->platoon_msg.set_speed_mm_s.state == PFE_SIG_VALID) &&
+                                          !ecu->degraded
+                                      ? ecu->platoon_msg.set_speed_mm_s.value
+                                      : ecu->cfg.default_set_speed_mm_s;
+        const uint64_t travelled_mm = ecu->preview_travelled_um / 1000U;
+        (void)pfe_predict_start(&ecu->predict, &ecu->preview_buf,
+                                (travelled_mm > UINT32_MAX) ? UINT32_MAX : (uint32_t)travelled_mm,
+                                &ecu->platoon, ecu->cfg.drag, ecu->cfg.cruise,
+                                pfe_clamp_i32(set_speed, PFE_SIM_STALL_MM_S, PFE_SPEED_MAX_MM_S),
+                                ecu->speed_mm_s);
+        ecu->predict_start_us = now_us;
+        ecu->preview_new = false;
+    }
+    (void)pfe_predict_run(&ecu->predict, &ecu->preview_buf, PFE_ECU_PREDICT_UNITS);
+    const pfe_predict_result_t *r = pfe_predict_result(&ecu->predict);
+    if (r->valid && (r->generation != ecu->predict_generation)) {
+        ecu->predict_generation = r->generation;
+        ecu->predict_result_us = now_us;
+    }
+}
+
 static void encode_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f)
 {
     const pfe_est_output_t *o = ecu->out;
@@ -281,9 +342,15 @@ static void encode_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f)
         const pfe_msg_hrlfc_t m = {{0U, PFE_SIG_NOT_AVAILABLE}, sig_u64(pfe_ecu_own_fuel_ul(ecu))};
         r = pfe_codec_encode_hrlfc(f, &m, sa);
     } else if (which == OUT_PREDICTION) {
-        /* The prediction over the preview comes with a later release. */
-        const pfe_sig_u32_t na = {0U, PFE_SIG_NOT_AVAILABLE};
-        const pfe_msg_fuel_prediction_t m = {na, na, na, na};
+        const pfe_predict_result_t *p = pfe_predict_result(&ecu->predict);
+        const bool fresh = p->valid && (ecu->preview.state == PFE_SIG_VALID) &&
+                           ((ecu->now_us - ecu->predict_result_us) <= PFE_ECU_PREDICT_MAX_AGE_US);
+        const pfe_msg_fuel_prediction_t m = {
+            sig_u32(fresh ? sat_u32(p->fuel_ul) : 0U, fresh),
+            sig_u32(fresh ? sat_u32(p->fuel_lower_ul) : 0U, fresh),
+            sig_u32(fresh ? sat_u32(p->fuel_upper_ul) : 0U, fresh),
+            sig_u32(fresh ? p->time_ms : 0U, fresh),
+        };
         r = pfe_codec_encode_fuel_prediction(f, &m, sa);
     } else {
         const uint32_t flags = (o != NULL) ? o->flags : 0U;
@@ -352,6 +419,7 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
         ecu->grade_ppm, ecu->grade.state == PFE_SIG_VALID,
     };
     ecu->out = pfe_estimator_step(&ecu->est, &in);
+    predict(ecu, now_us);
 
     uint32_t n = 0U;
     pfe_can_frame_t f;

@@ -10,7 +10,13 @@
  *      inputs not available (PFE_ECU_STALE_PERIODS);
  *   3. steps the estimator (pfe_estimator.h);
  *   4. sends each output on its J1939 schedule (can_dbc/pfe.dbc), plus the
- *      answers to requests (PGN 59904) and the address claim (J1939-81).
+ *      answers to requests (PGN 59904) and the address claim (J1939-81);
+ *   5. gives the prediction over the grade preview (pfe_predict.h) its
+ *      share of the tick, PFE_ECU_PREDICT_UNITS: once a second a new
+ *      prediction starts from the current speed and the distance travelled
+ *      since the preview's header, a new preview or platoon abandons the one
+ *      in progress, and PFE_FuelPrediction sends the latest (not available
+ *      without one, or when it is older than PFE_ECU_PREDICT_MAX_AGE_US).
  * The main loop reports what it saw go wrong (ticks overrun, frames it could
  * not send or that the bus dropped); the status message carries it.
  *
@@ -33,6 +39,7 @@
 #include "pfe_estimator.h"
 #include "pfe_nvm.h"
 #include "pfe_platoon.h"
+#include "pfe_predict.h"
 
 #define PFE_ECU_TICK_US 10000U
 #define PFE_ECU_RX_QUEUE_LEN 64U       /* frames between two ticks; more are dropped and counted */
@@ -40,6 +47,10 @@
 #define PFE_ECU_STALE_PERIODS 3U
 #define PFE_ECU_CLAIM_WAIT_US 250000U  /* J1939-81: wait after claiming before sending */
 #define PFE_ECU_DEFAULT_ADDRESS 0x8CU
+#define PFE_ECU_PREDICT_UNITS 36U      /* prediction work per tick (pfe_predict_run()) */
+#define PFE_ECU_PREDICT_PERIOD_US 1000000U /* a new prediction from the current position */
+#define PFE_ECU_PREDICT_MAX_AGE_US 3000000U /* an older prediction is sent as not available */
+#define PFE_ECU_DEFAULT_SET_SPEED_MM_S 25000 /* 90 km/h, until PFE_PlatoonConfig gives one */
 
 /* What the module is and how it starts. */
 typedef struct {
@@ -53,6 +64,11 @@ typedef struct {
     uint32_t default_vehicles;
     uint32_t default_position;
     uint32_t default_gap_mm;
+    /* Prediction over the grade preview: the cruise control simulated (NULL:
+     * pfe_default_cruise) and its set speed until PFE_PlatoonConfig gives
+     * one (0: PFE_ECU_DEFAULT_SET_SPEED_MM_S). */
+    const pfe_cruise_calib_t *cruise;
+    int32_t default_set_speed_mm_s;
 } pfe_ecu_config_t;
 
 /* Input states in PFE_Status (can_dbc/pfe.dbc VAL_). */
@@ -107,6 +123,13 @@ typedef struct {
     /* model */
     pfe_platoon_t platoon;
     pfe_estimator_t est;
+    /* prediction over the preview */
+    pfe_predict_t predict;
+    uint64_t preview_travelled_um;     /* since the preview's header */
+    bool preview_new;                  /* completed since the last prediction started */
+    uint64_t predict_start_us;
+    uint64_t predict_result_us;        /* when the last prediction was published */
+    uint32_t predict_generation;
     uint32_t own_position;
     bool degraded;                     /* running on the default platoon */
     const pfe_est_output_t *out;

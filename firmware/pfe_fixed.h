@@ -32,6 +32,14 @@ int64_t pfe_sat_add_i64(int64_t a, int64_t b);
 /* a + b for unsigned 64-bit, saturated at UINT64_MAX. */
 uint64_t pfe_sat_add_u64(uint64_t a, uint64_t b);
 
+/* Forces a function inline where the compiler can (GCC, Clang): for a hot
+ * function whose calls pass constants that fold away once inlined. */
+#if defined(__GNUC__)
+#define PFE_ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define PFE_ALWAYS_INLINE inline
+#endif
+
 /*
  * x / 2^shift rounded to nearest (halves toward plus infinity),
  * 1 <= shift <= 62, for |x| < 2^62 (every caller states its bound).

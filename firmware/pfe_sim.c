@@ -1,6 +1,7 @@
 /* pfe_sim.c - the platoon object model over a road (contract in pfe_sim.h). */
 #include "pfe_sim.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "pfe_fixed.h"
@@ -68,6 +69,11 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     sim->steps = 0U;
     sim->time_q16 = 0U;
     sim->fuel_nl = 0U;
+    sim->aux_nl = 0U;
+    sim->bound_grade_20ppm = NULL;
+    sim->bound_air_q32 = 0;
+    sim->bound_fuel_q20 = 0;
+    sim->bound_nl = 0;
     sim->grade_ppm = road->grade_ppm[0];
     sim->accel_um_s2 = 0;
     sim->fuel_step_nl = 0U;
@@ -95,7 +101,10 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     return PFE_OK;
 }
 
-int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road)
+/* One step (pfe_sim_step()); inline so that pfe_sim_run()'s loops have no
+ * call, and with_bound a constant in each so that a run without a bound
+ * carries none of its cost. */
+static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, bool with_bound)
 {
     if (sim->position_mm >= sim->end_mm) {
         return PFE_SIM_DONE;
@@ -109,7 +118,7 @@ int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road)
     const uint32_t left = sim->end_mm - sim->position_mm;
     const uint32_t ds = (left < sim->step_mm) ? left : sim->step_mm;
     const uint32_t v = (uint32_t)v_mm_s;
-    /* ds <= 10^4 mm: ds * 2^16 < 2^30; v >= 1000 mm/s: dt <= 10 s. */
+    /* ds <= 16000 mm: ds * 2^16 < 2^30; v >= 1000 mm/s: dt <= 16 s (2^20 in Q16). */
     const uint32_t dt_q16 = ((ds << 16) + (v / 2U)) / v;
 
     const int32_t grade = grade_at(road, sim->position_mm + (ds / 2U));
@@ -119,7 +128,7 @@ int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road)
                                       -(int32_t)obj->brake_max_n, f_max);
     /* |force| <= 2^26 (PFE_PI_OUT_MAX), |resistance| < 2^27 in N * 2^2: fits. */
     const int32_t accel = pfe_platoon_accel_um_s2(pl, (force * 4) - resist_q2);
-    /* |a| <= 2^24.3, dt <= 2^19.4: dv below 2^27.7, and the sum with a speed
+    /* |a| <= 2^24.3, dt <= 2^20: dv below 2^28.3, and the sum with a speed
      * <= 7e7 um/s stays inside int32. */
     const int32_t dv = (int32_t)pfe_mul_q((int64_t)accel, (int32_t)dt_q16, 16U);
     sim->speed_um_s = pfe_clamp_i32(sim->speed_um_s + dv, 0, PFE_SPEED_MAX_MM_S * 1000);
@@ -131,13 +140,26 @@ int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road)
     uint64_t fuel_step = 0U;
     if (fuel_force_q2 > 0) {
         /* Work Fw' ds and Paux dt in mJ times nL/mJ, in two products:
-         * Fw' [N * 2^2] <= 2^27 times ds * fuel_q20 (< 2^13.3 * 2^22) is below
-         * 2^62.3; aux_fuel_q8 < 2^41 times dt <= 2^19.3 below 2^61. */
+         * Fw' [N * 2^2] <= 2^27 times ds * fuel_q20 (< 2^14 * 2^22) is below
+         * 2^63; aux_fuel_q8 < 2^41 times dt <= 2^20 below 2^61. */
         const int32_t f = (fuel_force_q2 < FUEL_FORCE_MAX_Q2) ? fuel_force_q2 : FUEL_FORCE_MAX_Q2;
         const int64_t work_coef = (int64_t)ds * obj->fuel_q20;
         const int64_t work_nl = pfe_rshift_round((int64_t)f * work_coef, 22U);
         const int64_t aux_nl = pfe_rshift_round(sim->aux_fuel_q8 * (int64_t)dt_q16, 24U);
         fuel_step = (uint64_t)(work_nl + aux_nl);
+        sim->aux_nl += (uint64_t)aux_nl;
+    }
+    if (with_bound && (force > 0)) {
+        /* Air, rolling and the bound's grade at the step's start speed, in
+         * N * 2^2 as resistance_q2(), clamped to +-FUEL_FORCE_MAX_Q2; times
+         * ds * fuel as the work above: below 2^63. */
+        uint32_t k = (sim->position_mm + (ds / 2U)) / road->spacing_mm;
+        k = (k < road->n_samples) ? k : (road->n_samples - 1U);
+        const int64_t v2 = (int64_t)v_mm_s * (int64_t)v_mm_s;
+        int64_t f = pfe_rshift_round(sim->bound_air_q32 * v2, 30U) + sim->roll_q2 +
+                    pfe_rshift_round(sim->weight_q36 * ((int64_t)sim->bound_grade_20ppm[k] * 20), 34U);
+        f = (f > FUEL_FORCE_MAX_Q2) ? FUEL_FORCE_MAX_Q2 : ((f < -FUEL_FORCE_MAX_Q2) ? -FUEL_FORCE_MAX_Q2 : f);
+        sim->bound_nl += pfe_rshift_round(f * ((int64_t)ds * sim->bound_fuel_q20), 22U);
     }
     sim->fuel_nl = pfe_sat_add_u64(sim->fuel_nl, fuel_step);
     sim->fuel_step_nl = fuel_step;
@@ -148,4 +170,29 @@ int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road)
     sim->wheel_force_n = force;
     sim->accel_um_s2 = accel;
     return PFE_SIM_RUNNING;
+}
+
+int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road)
+{
+    return step(sim, road, sim->bound_grade_20ppm != NULL);
+}
+
+int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps)
+{
+    /* On a local copy, which the compiler can keep in registers across the
+     * steps (the caller's object may alias anything). */
+    pfe_sim_t s = *sim;
+    const pfe_road_t r_copy = *road;
+    int r = PFE_SIM_RUNNING;
+    if (s.bound_grade_20ppm != NULL) {
+        for (uint32_t k = 0U; (k < max_steps) && (r == PFE_SIM_RUNNING); k++) {
+            r = step(&s, &r_copy, true);
+        }
+    } else {
+        for (uint32_t k = 0U; (k < max_steps) && (r == PFE_SIM_RUNNING); k++) {
+            r = step(&s, &r_copy, false);
+        }
+    }
+    *sim = s;
+    return r;
 }

@@ -33,7 +33,7 @@
 #include "pfe_platoon.h"
 
 #define PFE_SIM_STEP_MIN_MM 100U
-#define PFE_SIM_STEP_MAX_MM 10000U
+#define PFE_SIM_STEP_MAX_MM 16000U
 #define PFE_SIM_STALL_MM_S 1000 /* 3.6 km/h */
 
 /* Return codes of pfe_sim_step(). */
@@ -65,6 +65,16 @@ typedef struct {
     uint32_t steps;
     uint64_t time_q16;       /* s * 2^16 */
     uint64_t fuel_nl;        /* platoon total, eq. 4.14 */
+    uint64_t aux_nl;         /* the auxiliaries' part of fuel_nl */
+    /* Optional work of a fuel bound (pfe_predict.h), summed over the steps
+     * where the controller pulls (Fw > 0): (bound_air v^2 + Fr + M g
+     * bound_grade[k]) ds * bound_fuel, v the step's starting speed, k the
+     * sample of its midpoint. Off while bound_grade_20ppm is NULL
+     * (pfe_sim_init() leaves it so). */
+    const int16_t *bound_grade_20ppm; /* one per road sample, in 20 ppm (+-25000) */
+    int64_t bound_air_q32;           /* as pfe_vehicle_t.air_q32 */
+    int64_t bound_fuel_q20;          /* as pfe_vehicle_t.fuel_q20 */
+    int64_t bound_nl;                /* the sum so far, nL (may be negative downhill) */
     /* What the last step used and produced. */
     int32_t grade_ppm;
     int32_t wheel_force_n;   /* controller output */
@@ -91,6 +101,14 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
  * fixed number of operations (two 32-bit divisions), no loop.
  */
 int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road);
+
+/*
+ * Up to max_steps steps (the same as calling pfe_sim_step() that often, at
+ * less cost per step): stops early at the end of the road or on a stall.
+ * Returns PFE_SIM_RUNNING (max_steps taken, more to go), PFE_SIM_DONE or
+ * PFE_ESTALL.
+ */
+int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps);
 
 /* Speed in mm/s, rounded. */
 int32_t pfe_sim_speed_mm_s(const pfe_sim_t *sim);

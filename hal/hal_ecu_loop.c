@@ -20,6 +20,8 @@ void hal_ecu_loop_config(pfe_ecu_config_t *cfg, uint8_t address, uint32_t save_i
     cfg->default_vehicles = vehicles;
     cfg->default_position = position;
     cfg->default_gap_mm = gap_mm;
+    cfg->cruise = &pfe_default_cruise;
+    cfg->default_set_speed_mm_s = PFE_ECU_DEFAULT_SET_SPEED_MM_S;
 }
 
 int hal_ecu_loop_init(hal_ecu_loop_t *loop, pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg,

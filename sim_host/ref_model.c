@@ -151,7 +151,7 @@ int ref_sim_init(ref_sim_t *sim, const ref_platoon_t *pl, const pfe_cruise_calib
                  const ref_road_t *road, double set_speed, double initial_speed, double step)
 {
     if ((road->n_samples == 0U) || (road->spacing <= 0.0) || (pfe_calib_check_cruise(cruise) != 0) ||
-        (step < 0.1) || (step > 10.0) || (set_speed < STALL) || (set_speed > SPEED_MAX) ||
+        (step < 0.1) || (step > 16.0) || (set_speed < STALL) || (set_speed > SPEED_MAX) ||
         (initial_speed < STALL) || (initial_speed > SPEED_MAX)) {
         return -1;
     }

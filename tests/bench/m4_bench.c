@@ -14,6 +14,13 @@
  *                             pfe_ecu_tick), CCVS1 every 10th tick, SSI every tick
  *   ecu_tick_burst            a tick with a full receive queue: every input
  *                             message and requests at once
+ *   predict_whole_n5          one whole prediction with its bounds (three runs
+ *                             of the object model) over the 12 km hilly road
+ *                             as a grade preview, 5 trucks
+ *   ecu_tick_predicting_max   the worst ECU tick while the module receives that
+ *                             preview and predicts over it, ticks as above
+ *   predict_ticks             ticks from the preview's last frame to the
+ *                             first prediction published
  *   stack_used                deepest stack seen (painted-stack method)
  * Means are over many steps, so their resolution is far below the 40
  * instructions of one reading; a max is a single reading (+-40).
@@ -27,6 +34,7 @@
 #include "firmware/pfe_estimator.h"
 #include "firmware/pfe_fixed.h"
 #include "firmware/pfe_platoon.h"
+#include "firmware/pfe_predict.h"
 #include "firmware/pfe_selfcheck.h"
 #include "firmware/pfe_sim.h"
 #include "hal/mps2/icount.h"
@@ -121,9 +129,7 @@ static int bench_sim(void)
         return -1;
     }
     const uint64_t t0 = hal_mps2_icount_now();
-    int rc;
-    while ((rc = pfe_sim_step(&sim, &road)) == PFE_SIM_RUNNING) {
-    }
+    const int rc = pfe_sim_run(&sim, &road, UINT32_MAX);
     const uint64_t t1 = hal_mps2_icount_now();
     if ((rc != PFE_SIM_DONE) || (sim.steps == 0U)) {
         return -1;
@@ -159,7 +165,7 @@ static int bench_ecu(void)
 {
     const pfe_ecu_config_t cfg = {PFE_ECU_DEFAULT_ADDRESS, 0x80A0000000000001ULL, 10000U,
                                   &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
-                                  5U, 0U, 10000U};
+                                  5U, 0U, 10000U, &pfe_default_cruise, 25000};
     uint64_t now = 1000000U;
     if (pfe_ecu_init(&s_ecu, &cfg, NULL, -1, now) != PFE_OK) {
         return -1;
@@ -213,12 +219,126 @@ static int bench_ecu(void)
     return 0;
 }
 
+/* Frame k of the hilly road as one grade preview (20 ppm resolution):
+ * 0 the header, then data frames; false past the last. */
+static bool preview_frame(uint32_t k, pfe_can_frame_t *out)
+{
+    const uint32_t n = (road_hilly_n_samples < PFE_PREVIEW_MAX_SAMPLES) ? road_hilly_n_samples
+                                                                        : PFE_PREVIEW_MAX_SAMPLES;
+    const uint32_t n_data = (n + PFE_PREVIEW_SAMPLES_PER_FRAME - 1U) / PFE_PREVIEW_SAMPLES_PER_FRAME;
+    if (k > n_data) {
+        return false;
+    }
+    pfe_msg_grade_preview_t m;
+    for (uint32_t i = 0U; i < (sizeof m); i++) {
+        ((uint8_t *)&m)[i] = 0U;
+    }
+    m.preview_id.value = 5U;
+    if (k == 0U) {
+        m.frame_type.value = PFE_PREVIEW_FRAME_HEADER;
+        m.sample_count.value = n;
+        m.spacing_m.value = road_hilly_spacing_mm / 1000U;
+    } else {
+        const uint32_t first = (k - 1U) * PFE_PREVIEW_SAMPLES_PER_FRAME;
+        m.frame_type.value = PFE_PREVIEW_FRAME_DATA;
+        m.first_index.value = first;
+        for (uint32_t j = 0U; j < PFE_PREVIEW_SAMPLES_PER_FRAME; j++) {
+            const bool in = (first + j) < n;
+            m.grade_ppm[j].value = in ? road_hilly_grade_ppm[first + j] : 0;
+            m.grade_ppm[j].state = in ? PFE_SIG_VALID : PFE_SIG_NOT_AVAILABLE;
+        }
+    }
+    return pfe_codec_encode_grade_preview(out, &m, 0x00U) >= 0;
+}
+
+static int bench_predict(void)
+{
+    /* One whole prediction, in one go: every call of pfe_predict_run(). The
+     * ECU's own preview and predictor serve as storage before it starts. */
+    pfe_preview_t *pv = &s_ecu.preview_buf;
+    pfe_predict_t *pred = &s_ecu.predict;
+    pfe_preview_init(pv);
+    pfe_can_frame_t f;
+    for (uint32_t k = 0U; preview_frame(k, &f); k++) {
+        (void)pfe_preview_push(pv, &f);
+    }
+    if ((setup(5U) != 0) || (pv->phase != PFE_PREVIEW_READY)) {
+        return -1;
+    }
+    pfe_predict_init(pred);
+    const uint64_t t0 = hal_mps2_icount_now();
+    if (pfe_predict_start(pred, pv, 0U, &s_platoon, &pfe_default_drag, &pfe_default_cruise,
+                          25000, 25000) != PFE_OK) {
+        return -1;
+    }
+    while (pfe_predict_run(pred, pv, UINT32_MAX) != PFE_PREDICT_DONE) {
+        if (pred->phase == PFE_PREDICT_IDLE) {
+            return -1;
+        }
+    }
+    const uint64_t insns = hal_mps2_icount_now() - t0 - HAL_MPS2_ICOUNT_OVERHEAD_INSNS;
+    const pfe_predict_result_t whole = *pfe_predict_result(pred);
+    const pfe_predict_result_t *r = &whole;
+    hal_mps2_write_bench("predict_whole_n5", insns, "insn");
+    hal_mps2_write_bench("predict_hilly_n5_fuel", r->fuel_ul, "uL");
+    hal_mps2_write_bench("predict_hilly_n5_lower", r->fuel_lower_ul, "uL");
+    hal_mps2_write_bench("predict_hilly_n5_upper", r->fuel_upper_ul, "uL");
+    hal_mps2_write_bench("predict_hilly_n5_time", r->time_ms, "ms");
+
+    /* The ECU receiving the preview (ten frames a tick with the drive's) and
+     * predicting over it, 5 trucks. */
+    const pfe_ecu_config_t cfg = {PFE_ECU_DEFAULT_ADDRESS, 0x80A0000000000001ULL, 10000U,
+                                  &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
+                                  5U, 0U, 10000U, &pfe_default_cruise, 25000};
+    uint64_t now = 1000000U;
+    if (pfe_ecu_init(&s_ecu, &cfg, NULL, -1, now) != PFE_OK) {
+        return -1;
+    }
+    uint64_t worst = 0U;
+    uint32_t sent_frames = 0U, done_at = 0U, last_frame_at = 0U;
+    bool more = true;
+    for (uint32_t tick = 0U; tick < 700U; tick++, now += PFE_ECU_TICK_US) {
+        const pfe_est_input_t in = drive_input(tick);
+        pfe_can_frame_t rx[12];
+        uint32_t n_rx = 0U;
+        const pfe_msg_ssi_t ssi = {{in.grade_ppm / 20, PFE_SIG_VALID}, {0, PFE_SIG_VALID},
+                                   {0U, PFE_SIG_VALID}};
+        (void)pfe_codec_encode_ssi(&rx[n_rx++], &ssi, 0x00U);
+        if (in.speed_fresh) {
+            const pfe_msg_ccvs1_t v = {{in.speed_mm_s, PFE_SIG_VALID}};
+            (void)pfe_codec_encode_ccvs1(&rx[n_rx++], &v, 0x00U);
+        }
+        for (uint32_t j = 0U; (j < 10U) && (tick >= 100U) && more; j++) {
+            more = preview_frame(sent_frames, &rx[n_rx]);
+            if (more) {
+                n_rx++;
+                sent_frames++;
+                last_frame_at = tick;
+            }
+        }
+        const uint64_t insns = ecu_tick(now, rx, n_rx);
+        if (tick >= 100U) {
+            worst = (insns > worst) ? insns : worst;
+        }
+        if ((done_at == 0U) && pfe_predict_result(&s_ecu.predict)->valid) {
+            done_at = tick;
+        }
+    }
+    if (done_at == 0U) {
+        return -1;
+    }
+    hal_mps2_write_bench("ecu_tick_predicting_max", worst, "insn");
+    hal_mps2_write_bench("predict_ticks", done_at - last_frame_at, "ticks");
+    sink(r->fuel_ul);
+    return 0;
+}
+
 int main(void)
 {
     hal_mps2_icount_start();
     if ((bench_estimator(5U, "est_step_n5_mean", "est_step_n5_max") != 0) ||
         (bench_estimator(PFE_MAX_VEHICLES, "est_step_n32_mean", "est_step_n32_max") != 0) ||
-        (bench_sim() != 0) || (bench_ecu() != 0)) {
+        (bench_sim() != 0) || (bench_ecu() != 0) || (bench_predict() != 0)) {
         hal_mps2_write_str("bench: failed\n");
         return 1;
     }

@@ -7,6 +7,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -30,7 +31,8 @@ static uint32_t g_ntx;
 static pfe_ecu_config_t config(void)
 {
     const pfe_ecu_config_t c = {PFE_ECU_DEFAULT_ADDRESS, OUR_NAME, 1000U, &pfe_default_vehicle,
-                                &pfe_default_env, &pfe_default_drag, 1U, 0U, 10000U};
+                                &pfe_default_env, &pfe_default_drag, 1U, 0U, 10000U,
+                                &pfe_default_cruise, 25000};
     return c;
 }
 
@@ -338,6 +340,113 @@ static void test_counters_reach_the_status_message(void **state)
     assert_int_equal(next_status(true, true).tick_overruns.value, PFE_STATUS_COUNTER_MAX);
 }
 
+static pfe_msg_fuel_prediction_t next_prediction(void)
+{
+    for (uint32_t k = 0U; k < 110U; k++) {
+        tick(true, true);
+        const pfe_can_frame_t *f = sent(PFE_PGN_FUEL_PREDICTION);
+        if (f != NULL) {
+            pfe_msg_fuel_prediction_t m;
+            assert_true(pfe_codec_decode_fuel_prediction(f, &m) >= 0);
+            return m;
+        }
+    }
+    fail_msg("no prediction within 1.1 s");
+    pfe_msg_fuel_prediction_t none;
+    memset(&none, 0, sizeof none);
+    return none;
+}
+
+/* A flat preview of n samples at spacing_m, ten frames a tick with the
+ * drive's own frames. */
+static void send_flat_preview(uint32_t n, uint32_t spacing_m, uint8_t id)
+{
+    pfe_can_frame_t f;
+    pfe_msg_grade_preview_t m;
+    memset(&m, 0, sizeof m);
+    m.frame_type.value = PFE_PREVIEW_FRAME_HEADER;
+    m.preview_id.value = id;
+    m.sample_count.value = n;
+    m.spacing_m.value = spacing_m;
+    assert_true(pfe_codec_encode_grade_preview(&f, &m, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    for (uint32_t k = 0U; k < n; k += PFE_PREVIEW_SAMPLES_PER_FRAME) {
+        memset(&m, 0, sizeof m);
+        m.frame_type.value = PFE_PREVIEW_FRAME_DATA;
+        m.preview_id.value = id;
+        m.first_index.value = k;
+        for (uint32_t j = 0U; j < PFE_PREVIEW_SAMPLES_PER_FRAME; j++) {
+            m.grade_ppm[j].state = ((k + j) < n) ? PFE_SIG_VALID : PFE_SIG_NOT_AVAILABLE;
+        }
+        assert_true(pfe_codec_encode_grade_preview(&f, &m, OTHER_SA) >= 0);
+        pfe_ecu_receive(&g_ecu, &f, g_now);
+        if ((k % 30U) == 27U) {
+            tick(true, true);
+        }
+    }
+}
+
+/* One truck, flat 12 km at 90 km/h: (5166 N x 12000 m + 4 kW x 480 s) /
+ * (0.40 x 35800 J/mL) = 4.463 L in 480 s; the prediction covers what is left
+ * of the preview when it starts, so per metre 0.3719 mL and 40 ms. */
+static void test_prediction_over_a_preview(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < 100U; k++) {
+        tick(true, true);
+    }
+    /* No preview: not available. */
+    pfe_msg_fuel_prediction_t p = next_prediction();
+    assert_int_equal(p.fuel_ul.state, PFE_SIG_NOT_AVAILABLE);
+    assert_int_equal(p.time_ms.state, PFE_SIG_NOT_AVAILABLE);
+    send_flat_preview(1000U, 12U, 1U);
+    /* A prediction is published within two seconds and sent at 1 Hz. */
+    for (uint32_t k = 0U; (k < 200U) && !pfe_predict_result(&g_ecu.predict)->valid; k++) {
+        tick(true, true);
+    }
+    const pfe_predict_result_t *r = pfe_predict_result(&g_ecu.predict);
+    assert_true(r->valid);
+    p = next_prediction();
+    assert_int_equal(p.fuel_ul.state, PFE_SIG_VALID);
+    assert_int_equal(p.time_ms.state, PFE_SIG_VALID);
+    assert_int_equal(p.fuel_lower_ul.state, PFE_SIG_VALID);
+    assert_int_equal(p.fuel_upper_ul.state, PFE_SIG_VALID);
+    const uint32_t left_m = r->distance_m;
+    assert_true((left_m > 11800U) && (left_m <= 12000U));
+    /* 0.01 L and 0.1 s on the bus. */
+    assert_true(labs((long)p.fuel_ul.value - (long)(left_m * 371.9)) <= 10000L);
+    assert_true(labs((long)p.time_ms.value - (long)(left_m * 40U)) <= 200L);
+    /* One truck on a flat road: both bounds are the prediction. */
+    assert_true(labs((long)p.fuel_lower_ul.value - (long)p.fuel_ul.value) <= 10000L);
+    assert_true(labs((long)p.fuel_upper_ul.value - (long)p.fuel_ul.value) <= 10000L);
+    /* Later predictions start further along. */
+    for (uint32_t k = 0U; k < 300U; k++) {
+        tick(true, true);
+    }
+    assert_true(pfe_predict_result(&g_ecu.predict)->distance_m < left_m - 50U);
+    /* A new preview's header abandons the prediction in progress. */
+    while (g_ecu.predict.phase == PFE_PREDICT_IDLE) {
+        tick(true, true);
+    }
+    pfe_can_frame_t f;
+    pfe_msg_grade_preview_t m;
+    memset(&m, 0, sizeof m);
+    m.frame_type.value = PFE_PREVIEW_FRAME_HEADER;
+    m.preview_id.value = 2U;
+    m.sample_count.value = 100U;
+    m.spacing_m.value = 10U;
+    assert_true(pfe_codec_encode_grade_preview(&f, &m, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    tick(true, true);
+    assert_int_equal(g_ecu.predict.phase, PFE_PREDICT_IDLE);
+    assert_int_equal(g_ecu.preview_travelled_um / 1000U, 250U); /* one tick at 25 m/s */
+    /* Without a complete preview the prediction is no longer sent. */
+    p = next_prediction();
+    assert_int_equal(p.fuel_ul.state, PFE_SIG_NOT_AVAILABLE);
+}
+
 static void test_platoon_config_switches_the_model(void **state)
 {
     (void)state;
@@ -437,6 +546,7 @@ int main(void)
         cmocka_unit_test(test_address_claim_conflicts),
         cmocka_unit_test(test_counters_reach_the_status_message),
         cmocka_unit_test(test_platoon_config_switches_the_model),
+        cmocka_unit_test(test_prediction_over_a_preview),
         cmocka_unit_test(test_resets_never_lose_more_than_one_save_interval),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

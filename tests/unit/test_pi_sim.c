@@ -195,12 +195,26 @@ static void test_sim_arguments_and_last_short_step(void **state)
     const pfe_road_t no_spacing = {short_grades, 3U, 0U};
     assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &empty, 25000, 25000, 10000U), PFE_EINVAL);
     assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &no_spacing, 25000, 25000, 10000U), PFE_EINVAL);
-    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 10001U), PFE_EINVAL);
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, PFE_SIM_STEP_MAX_MM + 1U), PFE_EINVAL);
     assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 99U), PFE_EINVAL);
     assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 999, 25000, 10000U), PFE_EINVAL);
     assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 70001, 10000U), PFE_EINVAL);
     assert_int_equal(pfe_sim_init(&sim, NULL, &pfe_default_cruise, &road, 25000, 25000, 10000U), PFE_EINVAL);
     assert_int_equal(pfe_sim_init(&sim, &pl, NULL, &road, 25000, 25000, 10000U), PFE_EINVAL);
+    /* pfe_sim_run() is the same as that many pfe_sim_step(), result by result. */
+    pfe_sim_t a, b;
+    assert_int_equal(pfe_sim_init(&a, &pl, &pfe_default_cruise, &road, 25000, 20000, 5000U), PFE_OK);
+    b = a;
+    assert_int_equal(pfe_sim_run(&a, &road, 2U), PFE_SIM_RUNNING);
+    assert_int_equal(pfe_sim_step(&b, &road), PFE_SIM_RUNNING);
+    assert_int_equal(pfe_sim_step(&b, &road), PFE_SIM_RUNNING);
+    assert_int_equal(a.position_mm, b.position_mm);
+    assert_int_equal(a.speed_um_s, b.speed_um_s);
+    assert_int_equal(a.fuel_nl, b.fuel_nl);
+    assert_int_equal(a.aux_nl, b.aux_nl);
+    assert_int_equal(pfe_sim_run(&a, &road, 100U), PFE_SIM_DONE);
+    assert_int_equal(a.steps, 5);
+    assert_true(a.aux_nl < a.fuel_nl);
 }
 
 int main(void)

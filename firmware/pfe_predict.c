@@ -1,0 +1,351 @@
+/*
+ * pfe_predict.c - fuel and time over the road ahead (contract in pfe_predict.h).
+ *
+ * The bounds (thesis 5.1, restated in REFERENCE.md):
+ *
+ *   fuel_lower = [sum over the steps of the SLOW run with Fw > 0 of
+ *                 (Fa_lower(v_min) + Fr + M g alpha_s) ds] / (eta_max rho_d)
+ *                + aux / (eta_max rho_d) + dKE / (eta_max rho_d)
+ *   fuel_upper = [sum over the steps of the FAST run with Fw > 0 of
+ *                 (Fa_upper(v_max) + Fr + M g alpha_l) ds] / (eta_min rho_d)
+ *                + aux / (eta_min rho_d) + dKE / (eta_min rho_d)
+ *   (each at least 0)
+ *
+ *   - speed trajectories (5.5, 5.7): v_min is the SLOW run, the object model
+ *     with every truck given the largest drag area and no drag reduction;
+ *     v_max the FAST run, the smallest drag area with the reduction at half
+ *     the gap; "Fw > 0" is the run's own controller output;
+ *   - air drag (5.5): the lower bound takes cw Af_min sum (1 - phi_i(d / 2))
+ *     at v_min, the upper bound cw Af_max N at v_max;
+ *   - rolling M g cr (5.7) over the same steps;
+ *   - grade (5.10): alpha_l and alpha_s are the largest and smallest preview
+ *     samples within (N - 1) * gap ahead of and behind the platoon's
+ *     position (the object model's point mass is its centre), taken per
+ *     sample: the window around any point of sample k lies within samples
+ *     k - w .. k + w, w = ceil((N - 1) * gap / spacing);
+ *   - auxiliary power is not bounded (the thesis: the same in both models):
+ *     the nominal run's auxiliary energy, with each bound's efficiency;
+ *   - the acceleration work (5.2) is the nominal run's change of kinetic
+ *     energy, dKE = M (v_end^2 - v_start^2) / 2, in both bounds. The thesis
+ *     (5.3) sets it to zero because its routes start and end at the set
+ *     speed, where this is zero too; a horizon that ends in a climb ends
+ *     slower, and the energy the platoon gives back would otherwise push
+ *     the prediction below the lower bound. (M without the rotating mass
+ *     mj: a few percent of a small term.)
+ * The step work is summed by pfe_sim itself (pfe_sim_t.bound_*), in N * 2^2
+ * and nL as its own fuel.
+ */
+#include "pfe_predict.h"
+
+#include <stddef.h>
+#include <string.h>
+
+#include "pfe_fixed.h"
+
+void pfe_predict_init(pfe_predict_t *p)
+{
+    memset(p, 0, sizeof *p);
+    p->phase = PFE_PREDICT_IDLE;
+}
+
+void pfe_predict_cancel(pfe_predict_t *p)
+{
+    p->phase = PFE_PREDICT_IDLE;
+    p->sim_ready = false;
+}
+
+const pfe_predict_result_t *pfe_predict_result(const pfe_predict_t *p)
+{
+    return &p->result;
+}
+
+static void abandon(pfe_predict_t *p, int why)
+{
+    p->phase = PFE_PREDICT_IDLE;
+    p->sim_ready = false;
+    p->last_error = why;
+    p->result.valid = false;
+}
+
+/* cw Af 1/2 rho of position i without its drag reduction: air_q32 /
+ * (1 - phi_i). A reduction of 100 % (not in any real table) keeps air_q32. */
+static int64_t air_unreduced_q32(const pfe_vehicle_t *v)
+{
+    const uint32_t keep_bp = (v->reduction_bp < 10000U) ? (10000U - v->reduction_bp) : 10000U;
+    return (int64_t)pfe_udiv_round_u64((uint64_t)v->air_q32 * 10000U, keep_bp);
+}
+
+int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t travelled_mm,
+                      const pfe_platoon_t *platoon, const pfe_drag_table_t *drag,
+                      const pfe_cruise_calib_t *cruise, int32_t set_speed_mm_s,
+                      int32_t start_speed_mm_s)
+{
+    if ((p == NULL) || (pv == NULL) || (platoon == NULL) || (drag == NULL) || (cruise == NULL) ||
+        (platoon->n_vehicles == 0U) || (platoon->n_vehicles > PFE_MAX_VEHICLES) ||
+        (pfe_calib_check_cruise(cruise) != PFE_OK) || (set_speed_mm_s < PFE_SIM_STALL_MM_S) ||
+        (set_speed_mm_s > PFE_SPEED_MAX_MM_S)) {
+        if (p != NULL) {
+            abandon(p, PFE_EINVAL);
+        }
+        return PFE_EINVAL;
+    }
+    if ((pv->phase != PFE_PREVIEW_READY) || (pv->unusable_samples != 0U) || (pv->spacing_m == 0U) ||
+        (pv->sample_count == 0U)) {
+        abandon(p, PFE_PREDICT_ENOPREVIEW);
+        return PFE_PREDICT_ENOPREVIEW;
+    }
+    const uint32_t spacing_mm = (uint32_t)pv->spacing_m * 1000U;
+    const uint32_t first = travelled_mm / spacing_mm;
+    if (first >= pv->sample_count) {
+        abandon(p, PFE_PREDICT_EPASSED);
+        return PFE_PREDICT_EPASSED;
+    }
+    p->platoon = platoon;
+    p->cruise = *cruise;
+    p->set_speed_mm_s = set_speed_mm_s;
+    /* The simulation needs a moving platoon: a start below its stall speed
+     * starts at the stall speed (the prediction then slightly short in time). */
+    p->start_speed_mm_s = pfe_clamp_i32(start_speed_mm_s, PFE_SIM_STALL_MM_S, PFE_SPEED_MAX_MM_S);
+    p->first_sample = first;
+    p->n_done = 0U;
+    p->road.grade_ppm = p->grade_ppm;
+    p->road.n_samples = (uint32_t)pv->sample_count - first;
+    p->road.spacing_mm = spacing_mm;
+    p->sim_ready = false;
+    p->lower_nl = 0;
+    /* Bound platoons' air drag and efficiencies from the nominal one. */
+    const uint32_t n = platoon->n_vehicles;
+    int64_t air_max = 0, air_min = INT64_MAX, fq_max = 0, fq_min = INT64_MAX;
+    uint64_t keep_sum_bp = 0U;
+    for (uint32_t i = 0U; i < n; i++) {
+        const pfe_vehicle_t *v = &platoon->position[i];
+        const int64_t a = air_unreduced_q32(v);
+        air_max = (a > air_max) ? a : air_max;
+        air_min = (a < air_min) ? a : air_min;
+        fq_max = (v->fuel_q20 > fq_max) ? v->fuel_q20 : fq_max;
+        fq_min = (v->fuel_q20 < fq_min) ? v->fuel_q20 : fq_min;
+        keep_sum_bp += 10000U - pfe_drag_reduction_bp(drag, i, n, platoon->gap_mm / 2U);
+    }
+    /* air < 2^22 (pfe_sim.c), times N <= 32 or times keep_sum <= 32e4: below 2^41. */
+    p->air_slow_q32 = air_max * (int64_t)n;
+    p->air_fast_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)air_min * keep_sum_bp, 10000U);
+    p->fuel_upper_q20 = fq_max;
+    p->fuel_lower_q20 = fq_min;
+    const uint64_t window_mm = (uint64_t)(n - 1U) * platoon->gap_mm;
+    const uint64_t w = (window_mm + spacing_mm - 1U) / spacing_mm;
+    p->window_samples = (w > PFE_PREVIEW_MAX_SAMPLES) ? PFE_PREVIEW_MAX_SAMPLES : (uint32_t)w;
+    p->phase = PFE_PREDICT_LOADING;
+    return PFE_OK;
+}
+
+/* Sets up the run of the current phase: the nominal platoon, or a bound
+ * platoon with its work summed by the simulation. */
+static int start_run(pfe_predict_t *p)
+{
+    const pfe_platoon_t *pl = p->platoon;
+    const bool bound = p->phase != PFE_PREDICT_NOMINAL;
+    const bool upper = p->phase == PFE_PREDICT_FAST;
+    if (bound) {
+        p->bound = *p->platoon;
+        p->bound.object.air_q32 = upper ? p->air_fast_q32 : p->air_slow_q32;
+        pl = &p->bound;
+    }
+    const uint32_t step = (p->road.spacing_mm < PFE_PREDICT_STEP_MAX_MM) ? p->road.spacing_mm
+                                                                          : PFE_PREDICT_STEP_MAX_MM;
+    const int rc = pfe_sim_init(&p->sim, pl, &p->cruise, &p->road, p->set_speed_mm_s,
+                                p->start_speed_mm_s,
+                                (step < PFE_SIM_STEP_MIN_MM) ? PFE_SIM_STEP_MIN_MM : step);
+    if ((rc == PFE_OK) && bound) {
+        /* The upper bound's drag is the slow platoon's, at the fast run's
+         * speed; the lower bound's the fast platoon's at the slow run's. */
+        p->sim.bound_grade_20ppm = p->window_20ppm;
+        p->sim.bound_air_q32 = upper ? p->air_slow_q32 : p->air_fast_q32;
+        p->sim.bound_fuel_q20 = upper ? p->fuel_upper_q20 : p->fuel_lower_q20;
+    }
+    p->sim_ready = rc == PFE_OK;
+    return rc;
+}
+
+/* True when s beats g as the window's extreme; ties go to the later sample,
+ * which stays in the window longer. */
+static bool beats(int32_t s, int32_t g, bool upper)
+{
+    return upper ? (s >= g) : (s <= g);
+}
+
+/* Window extremes for samples n_done .. n_done + count - 1: largest
+ * (upper) or smallest grade within window_samples on either side. A
+ * sliding window: the extreme is kept from one sample to the next and the
+ * window rescanned only when it leaves. Returns the samples compared. */
+static uint32_t window_extremes(pfe_predict_t *p, bool upper, uint32_t count)
+{
+    const int32_t *grade = p->grade_ppm;
+    int16_t *out = p->window_20ppm;
+    const uint32_t n = p->road.n_samples;
+    const uint32_t w = p->window_samples;
+    const uint32_t end = ((p->n_done + count) < n) ? (p->n_done + count) : n;
+    int32_t value = p->win_value;
+    uint32_t index = p->win_index, last = p->win_last, compared = 0U;
+    for (uint32_t k = p->n_done; k < end; k++) {
+        const uint32_t lo = (k > w) ? (k - w) : 0U;
+        const uint32_t hi = ((k + w) < n) ? (k + w) : (n - 1U);
+        if ((k == 0U) || (index < lo)) {
+            value = grade[lo];
+            index = lo;
+            last = lo;
+        }
+        for (uint32_t j = last + 1U; j <= hi; j++) {
+            if (beats(grade[j], value, upper)) {
+                value = grade[j];
+                index = j;
+            }
+            compared++;
+        }
+        last = (hi > last) ? hi : last;
+        /* Preview grades are multiples of 20 ppm within +-PFE_GRADE_MAX_PPM. */
+        out[k] = (int16_t)(value / 20);
+    }
+    p->win_value = value;
+    p->win_index = index;
+    p->win_last = last;
+    p->n_done = end;
+    return compared;
+}
+
+/* M (v_end^2 - v_start^2) / 2 as fuel at fq [nL/mJ * 2^20]: in mJ it is
+ * M [kg] * dv2 [(mm/s)^2] / 2000, |M dv2| < 3.2e6 * 4.9e9 < 2^54, so the
+ * quotient is below 2^43 and, shifted by 2^-4, times fq < 2^22 below 2^61. */
+static int64_t kinetic_nl(const pfe_predict_t *p, int64_t fq)
+{
+    const int64_t v1 = p->nominal_end_speed_mm_s, v0 = p->start_speed_mm_s;
+    const int64_t dv2 = (v1 * v1) - (v0 * v0);
+    const int64_t ke_mj = ((int64_t)p->platoon->mass_kg * dv2) / 2000;
+    return pfe_rshift_round(pfe_rshift_round(ke_mj, 4U) * fq, 16U);
+}
+
+/* The nominal run's auxiliary fuel at another efficiency: aux * fq / fq_nominal.
+ * aux < 2^40 (a million litres) times fq < 2^22: below 2^62. */
+static int64_t aux_nl(const pfe_predict_t *p, int64_t fq)
+{
+    const uint64_t fq_nominal = (uint64_t)p->platoon->object.fuel_q20;
+    const uint64_t aux = (p->nominal_aux_nl < ((uint64_t)1 << 40)) ? p->nominal_aux_nl
+                                                                     : ((uint64_t)1 << 40);
+    return (int64_t)pfe_udiv_round_u64(aux * (uint64_t)fq, (fq_nominal > 0U) ? fq_nominal : 1U);
+}
+
+static void publish(pfe_predict_t *p)
+{
+    pfe_predict_result_t *r = &p->result;
+    const int64_t upper_nl = p->sim.bound_nl + aux_nl(p, p->fuel_upper_q20) +
+                             kinetic_nl(p, p->fuel_upper_q20);
+    const uint64_t lower = (p->lower_nl > 0) ? (uint64_t)p->lower_nl : 0U;
+    const uint64_t upper = (upper_nl > 0) ? (uint64_t)upper_nl : 0U;
+    r->fuel_ul = pfe_udiv_round_u64(p->nominal_fuel_nl, 1000U);
+    r->fuel_upper_ul = pfe_udiv_round_u64(upper, 1000U);
+    r->fuel_lower_ul = pfe_udiv_round_u64(lower, 1000U);
+    const uint64_t ms = ((p->nominal_time_q16 * 1000U) + 32768U) >> 16;
+    r->time_ms = (ms > UINT32_MAX) ? UINT32_MAX : (uint32_t)ms;
+    r->distance_m = (p->road.n_samples * p->road.spacing_mm) / 1000U;
+    r->end_speed_mm_s = p->nominal_end_speed_mm_s;
+    r->generation++;
+    r->valid = true;
+    p->last_error = PFE_OK;
+    p->phase = PFE_PREDICT_DONE;
+}
+
+/* A run's steps within the budget left; moves to `next` at its end. */
+static uint32_t run_steps(pfe_predict_t *p, uint32_t units, pfe_predict_phase_t next)
+{
+    const int r = pfe_sim_run(&p->sim, &p->road, units);
+    if (r == PFE_ESTALL) {
+        abandon(p, PFE_PREDICT_ESTALL);
+    } else if (r == PFE_SIM_DONE) {
+        if (p->phase == PFE_PREDICT_NOMINAL) {
+            p->nominal_fuel_nl = p->sim.fuel_nl;
+            p->nominal_aux_nl = p->sim.aux_nl;
+            p->nominal_time_q16 = p->sim.time_q16;
+            p->nominal_end_speed_mm_s = pfe_sim_speed_mm_s(&p->sim);
+        } else if (p->phase == PFE_PREDICT_SLOW) {
+            p->lower_nl = p->sim.bound_nl + aux_nl(p, p->fuel_lower_q20) +
+                          kinetic_nl(p, p->fuel_lower_q20);
+        } else {
+            /* FAST: publish() reads the sum from the simulation */
+        }
+        p->sim_ready = false;
+        p->n_done = 0U;
+        if (next == PFE_PREDICT_DONE) {
+            publish(p);
+        } else {
+            p->phase = next;
+        }
+    } else {
+        /* budget spent, run continues */
+    }
+    return units;
+}
+
+pfe_predict_phase_t pfe_predict_run(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t budget)
+{
+    if (p->phase == PFE_PREDICT_DONE) {
+        p->phase = PFE_PREDICT_IDLE;
+    }
+    uint32_t cost = 0U;
+    while ((cost < budget) && (p->phase != PFE_PREDICT_IDLE) && (p->phase != PFE_PREDICT_DONE)) {
+        const uint32_t left = budget - cost;
+        if (p->phase == PFE_PREDICT_LOADING) {
+            if ((pv->phase != PFE_PREVIEW_READY) ||
+                ((uint32_t)pv->sample_count != (p->first_sample + p->road.n_samples))) {
+                abandon(p, PFE_PREDICT_ENOPREVIEW); /* the preview changed under us */
+                break;
+            }
+            uint32_t want = left * PFE_PREDICT_LOAD_PER_UNIT;
+            want = (want < (p->road.n_samples - p->n_done)) ? want : (p->road.n_samples - p->n_done);
+            const uint32_t got = pfe_preview_copy_ppm(pv, p->first_sample + p->n_done, want,
+                                                      &p->grade_ppm[p->n_done]);
+            if (got != want) {
+                abandon(p, PFE_PREDICT_ENOPREVIEW);
+                break;
+            }
+            for (uint32_t k = p->n_done; k < (p->n_done + got); k++) {
+                p->grade_ppm[k] = pfe_clamp_i32(p->grade_ppm[k], -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM);
+            }
+            p->n_done += got;
+            cost += (got + PFE_PREDICT_LOAD_PER_UNIT - 1U) / PFE_PREDICT_LOAD_PER_UNIT;
+            if (p->n_done == p->road.n_samples) {
+                p->n_done = 0U;
+                p->phase = PFE_PREDICT_NOMINAL;
+            }
+        } else if ((p->phase == PFE_PREDICT_WINDOW_LOW) || (p->phase == PFE_PREDICT_WINDOW_HIGH)) {
+            const bool upper = p->phase == PFE_PREDICT_WINDOW_HIGH;
+            /* A unit: PFE_PREDICT_WINDOW_PER_UNIT samples, plus one per
+             * PFE_PREDICT_WINDOW_PER_UNIT * 4 comparisons of a rescan. */
+            const uint32_t before = p->n_done;
+            const uint32_t compared = window_extremes(p, upper, left * PFE_PREDICT_WINDOW_PER_UNIT);
+            const uint32_t samples = p->n_done - before;
+            cost += ((samples + PFE_PREDICT_WINDOW_PER_UNIT - 1U) / PFE_PREDICT_WINDOW_PER_UNIT) +
+                    (compared / (PFE_PREDICT_WINDOW_PER_UNIT * 4U));
+            if (p->n_done == p->road.n_samples) {
+                p->n_done = 0U;
+                p->phase = upper ? PFE_PREDICT_FAST : PFE_PREDICT_SLOW;
+            }
+        } else if (!p->sim_ready) {
+            /* Setting up a run reads every sample once and divides: it takes
+             * a call of its own. */
+            if (cost > 0U) {
+                break;
+            }
+            if (start_run(p) != PFE_OK) {
+                abandon(p, PFE_EINVAL);
+                break;
+            }
+            break;
+        } else if (p->phase == PFE_PREDICT_NOMINAL) {
+            cost += run_steps(p, left, PFE_PREDICT_WINDOW_LOW);
+        } else if (p->phase == PFE_PREDICT_SLOW) {
+            cost += run_steps(p, left, PFE_PREDICT_WINDOW_HIGH);
+        } else {
+            cost += run_steps(p, left, PFE_PREDICT_DONE);
+        }
+    }
+    return p->phase;
+}

@@ -1,0 +1,282 @@
+/*
+ * The module's prediction over a grade preview (firmware/pfe_predict.h)
+ * against the double-precision object model (sim_host/ref_model.h) on the
+ * same preview, as it arrives on CAN: each road of sim_host/roads encoded as
+ * PFE_GradePreview frames, reassembled by pfe_preview_push(), then predicted
+ * in slices of work as the ECU does. Fuel and time within 1 % of the
+ * reference; the bounds around the prediction; hand-computed literals on the
+ * flat road.
+ *
+ *   test_predict ROADS_DIR
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "firmware/pfe_calib.h"
+#include "firmware/pfe_codec.h"
+#include "firmware/pfe_ecu.h"
+#include "firmware/pfe_platoon.h"
+#include "firmware/pfe_predict.h"
+#include "sim_host/ref_model.h"
+#include "sim_host/road_csv.h"
+
+#define BUDGET PFE_ECU_PREDICT_UNITS /* work units per tick, as the ECU gives */
+
+static const char *g_roads;
+static pfe_preview_t g_pv;
+static pfe_predict_t g_pred;
+
+/* Sends road (spacing a whole number of metres) as one preview, frame by frame. */
+static void send_preview(const int32_t *grade_ppm, uint32_t n, uint32_t spacing_m, uint8_t id)
+{
+    pfe_can_frame_t f;
+    pfe_msg_grade_preview_t m;
+    memset(&m, 0, sizeof m);
+    m.frame_type.value = PFE_PREVIEW_FRAME_HEADER;
+    m.preview_id.value = id;
+    m.sample_count.value = n;
+    m.spacing_m.value = spacing_m;
+    assert_true(pfe_codec_encode_grade_preview(&f, &m, 0x33U) >= 0);
+    assert_true(pfe_preview_push(&g_pv, &f) >= 0);
+    for (uint32_t k = 0U; k < n; k += PFE_PREVIEW_SAMPLES_PER_FRAME) {
+        memset(&m, 0, sizeof m);
+        m.frame_type.value = PFE_PREVIEW_FRAME_DATA;
+        m.preview_id.value = id;
+        m.first_index.value = k;
+        for (uint32_t j = 0U; j < PFE_PREVIEW_SAMPLES_PER_FRAME; j++) {
+            if ((k + j) < n) {
+                m.grade_ppm[j].value = grade_ppm[k + j];
+            } else {
+                m.grade_ppm[j].state = PFE_SIG_NOT_AVAILABLE;
+            }
+        }
+        assert_true(pfe_codec_encode_grade_preview(&f, &m, 0x33U) >= 0);
+        assert_true(pfe_preview_push(&g_pv, &f) >= 0);
+    }
+    assert_int_equal(g_pv.phase, PFE_PREVIEW_READY);
+}
+
+static void make_platoon(pfe_platoon_t *pl, pfe_platoon_config_t *cfg, uint32_t n)
+{
+    pfe_platoon_config_uniform(cfg, n, 10000U, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    assert_int_equal(pfe_platoon_init(pl, cfg), PFE_OK);
+}
+
+/* Runs a started prediction to its end in slices; returns the slices. */
+static uint32_t run_to_end(void)
+{
+    uint32_t slices = 0U;
+    pfe_predict_phase_t ph;
+    do {
+        ph = pfe_predict_run(&g_pred, &g_pv, BUDGET);
+        slices++;
+        assert_true(slices < 100000U);
+    } while ((ph != PFE_PREDICT_DONE) && (ph != PFE_PREDICT_IDLE));
+    return slices;
+}
+
+typedef struct {
+    double fuel_l;
+    double time_s;
+} ref_result_t;
+
+/* The double-precision object model over samples first .. n - 1 as the preview holds them. */
+static ref_result_t reference(const pfe_platoon_config_t *cfg, uint32_t first, double speed)
+{
+    const uint32_t n = g_pv.sample_count - first;
+    double *grade = malloc(sizeof(double) * n);
+    assert_non_null(grade);
+    for (uint32_t k = 0U; k < n; k++) {
+        int32_t g = 0;
+        assert_int_equal(pfe_preview_grade_ppm(&g_pv, first + k, &g), PFE_SIG_VALID);
+        grade[k] = g / 1e6;
+    }
+    static ref_platoon_t rpl;
+    assert_int_equal(ref_platoon_init(&rpl, cfg), 0);
+    const ref_road_t road = {grade, n, g_pv.spacing_m};
+    ref_sim_t sim;
+    const double step = (g_pv.spacing_m < 16.0) ? g_pv.spacing_m : 16.0; /* as the module */
+    assert_int_equal(ref_sim_init(&sim, &rpl, &pfe_default_cruise, &road, 25.0, speed, step), 0);
+    int r;
+    while ((r = ref_sim_step(&sim, &road)) == 1) {
+    }
+    assert_int_equal(r, 0);
+    free(grade);
+    const ref_result_t out = {sim.fuel, sim.time};
+    return out;
+}
+
+/* A road of sim_host/roads as a preview: samples quantised to the message's
+ * 20 ppm on the way. */
+static void load_road(const char *name, road_ppm_t *road)
+{
+    char path[512], err[256];
+    (void)snprintf(path, sizeof path, "%s/%s.csv", g_roads, name);
+    assert_int_equal(road_ppm_load(path, road, err, sizeof err), 0);
+    assert_true(road->n_samples <= PFE_PREVIEW_MAX_SAMPLES);
+    assert_int_equal(road->spacing_mm % 1000U, 0U);
+}
+
+static void check_road(const char *name, uint32_t n_vehicles, uint32_t travelled_m)
+{
+    road_ppm_t road;
+    load_road(name, &road);
+    pfe_preview_init(&g_pv);
+    send_preview(road.grade_ppm, road.n_samples, road.spacing_mm / 1000U, 3U);
+    pfe_platoon_t pl;
+    pfe_platoon_config_t cfg;
+    make_platoon(&pl, &cfg, n_vehicles);
+    pfe_predict_init(&g_pred);
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, travelled_m * 1000U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_OK);
+    const uint32_t slices = run_to_end();
+    const pfe_predict_result_t *r = pfe_predict_result(&g_pred);
+    assert_true(r->valid);
+    const uint32_t first = (travelled_m * 1000U) / road.spacing_mm;
+    const ref_result_t ref = reference(&cfg, first, 25.0);
+    const double fuel = (double)r->fuel_ul / 1e6, time = (double)r->time_ms / 1e3;
+    const double e_fuel = (fuel - ref.fuel_l) / ref.fuel_l * 100.0;
+    const double e_time = (time - ref.time_s) / ref.time_s * 100.0;
+    printf("predict %-6s N=%u from %5u m: fuel %.4f L (ref %.4f L, %+.4f %%), time %.1f s "
+           "(ref %.1f s, %+.4f %%), bounds [%.4f, %.4f] L, %u slices of %u units\n",
+           name, n_vehicles, travelled_m, fuel, ref.fuel_l, e_fuel, time, ref.time_s, e_time,
+           (double)r->fuel_lower_ul / 1e6, (double)r->fuel_upper_ul / 1e6, slices, BUDGET);
+    assert_true(fabs(e_fuel) < 1.0);
+    assert_true(fabs(e_time) < 1.0);
+    assert_true(r->fuel_lower_ul <= r->fuel_ul);
+    assert_true(r->fuel_ul <= r->fuel_upper_ul);
+    assert_int_equal(r->distance_m, ((road.n_samples - first) * road.spacing_mm) / 1000U);
+    road_ppm_free(&road);
+}
+
+static void test_hilly_n5_within_one_percent(void **state)
+{
+    (void)state;
+    check_road("hilly", 5U, 0U);
+}
+
+static void test_uphill_n5_within_one_percent(void **state)
+{
+    (void)state;
+    check_road("uphill", 5U, 0U);
+}
+
+static void test_flat_n5_within_one_percent(void **state)
+{
+    (void)state;
+    check_road("flat", 5U, 0U);
+}
+
+static void test_hilly_from_halfway(void **state)
+{
+    (void)state;
+    check_road("hilly", 5U, 6000U);
+}
+
+/* One truck, flat 12 km at 90 km/h (REFERENCE.md defaults): 5166 N of
+ * resistance over 12000 m is 61.99 MJ, 4 kW of auxiliaries over 480 s 1.92
+ * MJ; (61.99 + 1.92) MJ / (0.40 * 35800 J/mL) = 4.463 L. With one truck and
+ * no grade the bounds' runs equal the nominal one: lower == upper. */
+static void test_flat_one_truck_literals(void **state)
+{
+    (void)state;
+    road_ppm_t road;
+    load_road("flat", &road);
+    pfe_preview_init(&g_pv);
+    send_preview(road.grade_ppm, road.n_samples, road.spacing_mm / 1000U, 0U);
+    pfe_platoon_t pl;
+    pfe_platoon_config_t cfg;
+    make_platoon(&pl, &cfg, 1U);
+    pfe_predict_init(&g_pred);
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 0U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_OK);
+    (void)run_to_end();
+    const pfe_predict_result_t *r = pfe_predict_result(&g_pred);
+    assert_true(r->valid);
+    assert_true(labs((long)r->time_ms - 480000L) < 100L);  /* 480.0 s */
+    assert_true(labs((long)r->fuel_ul - 4463000L) < 4500L); /* 4.463 L within 0.1 % */
+    assert_int_equal(r->fuel_lower_ul, r->fuel_upper_ul);
+    assert_true(labs((long)r->fuel_ul - (long)r->fuel_upper_ul) < 500L);
+    road_ppm_free(&road);
+}
+
+static void test_refusals_and_restart(void **state)
+{
+    (void)state;
+    pfe_platoon_t pl;
+    pfe_platoon_config_t cfg;
+    make_platoon(&pl, &cfg, 5U);
+    pfe_preview_init(&g_pv);
+    pfe_predict_init(&g_pred);
+    /* No preview yet. */
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 0U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_PREDICT_ENOPREVIEW);
+    static int32_t grade[300];
+    for (uint32_t k = 0U; k < 300U; k++) {
+        grade[k] = 10000;
+    }
+    send_preview(grade, 300U, 10U, 1U);
+    /* Past its 3000 m. */
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 3000000U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_PREDICT_EPASSED);
+    assert_false(pfe_predict_result(&g_pred)->valid);
+    /* Start, then a new preview arrives mid-way: the old one is abandoned. */
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 0U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_OK);
+    (void)pfe_predict_run(&g_pred, &g_pv, 5U);
+    grade[0] = 20000;
+    send_preview(grade, 150U, 10U, 2U);
+    assert_int_equal(pfe_predict_run(&g_pred, &g_pv, BUDGET), PFE_PREDICT_IDLE);
+    assert_int_equal(g_pred.last_error, PFE_PREDICT_ENOPREVIEW);
+    assert_false(pfe_predict_result(&g_pred)->valid);
+    /* Restarted on the new preview, it completes: 1500 m. */
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 0U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_OK);
+    (void)run_to_end();
+    assert_true(pfe_predict_result(&g_pred)->valid);
+    assert_int_equal(pfe_predict_result(&g_pred)->generation, 1U);
+    assert_int_equal(pfe_predict_result(&g_pred)->distance_m, 1500U);
+    /* A wall the platoon cannot climb: stalls, no result. */
+    for (uint32_t k = 0U; k < 300U; k++) {
+        grade[k] = 300000;
+    }
+    send_preview(grade, 300U, 10U, 3U);
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 0U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_OK);
+    (void)run_to_end();
+    assert_int_equal(g_pred.last_error, PFE_PREDICT_ESTALL);
+    assert_false(pfe_predict_result(&g_pred)->valid);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: test_predict ROADS_DIR\n");
+        return 2;
+    }
+    g_roads = argv[1];
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_flat_one_truck_literals),
+        cmocka_unit_test(test_flat_n5_within_one_percent),
+        cmocka_unit_test(test_uphill_n5_within_one_percent),
+        cmocka_unit_test(test_hilly_n5_within_one_percent),
+        cmocka_unit_test(test_hilly_from_halfway),
+        cmocka_unit_test(test_refusals_and_restart),
+    };
+    return cmocka_run_group_tests_name("predict", tests, NULL, NULL);
+}
