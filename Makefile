@@ -50,7 +50,7 @@ deps: $(DEPS_STAMP)
 
 # ---------------------------------------------------------------- host tools
 
-TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu $(HOST)/pfe_ecu_replay
+TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu $(HOST)/pfe_ecu_replay $(HOST)/sensitivity
 tools: $(TOOLS)
 
 $(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
@@ -146,6 +146,7 @@ include mk/m4.mk
 # Optimised for instruction count, across files: the model's small helpers
 # (clamps, saturating adds) live in their own files and must inline.
 include mk/vcan.mk
+include mk/sensitivity.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
@@ -255,7 +256,7 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 	sh tests/replay/host_vs_m4.sh $(BUILD)/replay $(HOST) $(M4_OUT)/pfe_ecu_mps2.elf \
 	    $(E2E_PAYLOAD)/drive.log
 
-test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test
+test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test test-sensitivity
 
 # ---------------------------------------------------------------- benchmarks
 

@@ -1,0 +1,65 @@
+# Sensitivity analysis (thesis chapter 6): the command, its tests, its run.
+#
+# Include from the top-level Makefile (make runs in the repository root),
+# after the variables it uses are set (BUILD, HOST, HOSTSAN, HOST_CC,
+# HOST_CFLAGS, SAN_CFLAGS, FW_SRC, FW_HDR, ROADS, ROAD_NAMES, DEPS_STAMP):
+#
+#   include mk/sensitivity.mk
+#   TOOLS += $(HOST)/sensitivity        (or on the TOOLS line)
+#   test: test-sensitivity
+#
+# Targets:
+#   $(HOST)/sensitivity   the command (sim_host/sensitivity.c)
+#   sensitivity           run it on the three bundled roads: tables on
+#                         stdout, $(SENS_OUT)/NAME.csv and NAME.png
+#   test-sensitivity      tests/host/test_sensitivity.c (CMocka, ASan +
+#                         UBSan), then the command itself under ASan + UBSan
+#                         on the three roads (exit 0, a CSV and a PNG each)
+#                         and on a bad road file (exit 2, file and line named)
+#
+# The plots need gnuplot: scripts/deps.sh installs gnuplot-nox on first use.
+
+SENS_SRC := sim_host/sensitivity_run.c sim_host/ref_model.c sim_host/road_csv.c
+SENS_HDR := sim_host/sensitivity_run.h sim_host/ref_model.h sim_host/road_csv.h
+SENS_OUT := $(BUILD)/sensitivity
+SENS_CHECK := $(BUILD)/sensitivity-check
+SENS_ROADS := $(addprefix $(ROADS)/,$(addsuffix .csv,$(ROAD_NAMES)))
+SENS_PLOT_STAMP := $(BUILD)/.deps-gnuplot-ok
+
+.PHONY: sensitivity test-sensitivity
+
+$(SENS_PLOT_STAMP): scripts/deps.sh
+	@mkdir -p $(@D)
+	sh scripts/deps.sh gnuplot-nox
+	@touch $@
+
+$(HOST)/sensitivity: sim_host/sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/sensitivity.c $(SENS_SRC) $(FW_SRC) -lm
+
+$(HOSTSAN)/sensitivity: sim_host/sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ sim_host/sensitivity.c $(SENS_SRC) $(FW_SRC) -lm
+
+$(HOSTSAN)/test_sensitivity: tests/host/test_sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(SENS_SRC) $(FW_SRC) -lcmocka -lm
+
+sensitivity: $(HOST)/sensitivity $(SENS_PLOT_STAMP)
+	$(HOST)/sensitivity --out $(SENS_OUT) $(SENS_ROADS)
+
+test-sensitivity: $(HOSTSAN)/test_sensitivity $(HOSTSAN)/sensitivity $(SENS_PLOT_STAMP)
+	@echo "== host: test_sensitivity"; $(HOSTSAN)/test_sensitivity $(ROADS)
+	@echo "== host: sensitivity on $(ROAD_NAMES), and on a bad road"
+	@rm -rf $(SENS_CHECK) && mkdir -p $(SENS_CHECK)
+	@sh scripts/expect_exit.sh 0 $(SENS_CHECK)/run.txt -q -- \
+	    $(HOSTSAN)/sensitivity --out $(SENS_CHECK) $(SENS_ROADS)
+	@set -e; for r in $(ROAD_NAMES); do \
+	    grep -qx "csv: $(SENS_CHECK)/$$r.csv" $(SENS_CHECK)/run.txt; test -s $(SENS_CHECK)/$$r.csv; \
+	    grep -qx "png: $(SENS_CHECK)/$$r.png (gnuplot script $(SENS_CHECK)/$$r.gp)" $(SENS_CHECK)/run.txt; \
+	    test -s $(SENS_CHECK)/$$r.png; done
+	@printf 'distance_m,grade_percent\n0,0\n12,1.2.3\n' > $(SENS_CHECK)/bad.csv
+	@sh scripts/expect_exit.sh 2 $(SENS_CHECK)/bad.txt -q \
+	    -l "sensitivity: $(SENS_CHECK)/bad.csv:3: bad number '1.2.3' in column 2 (grade_percent)" -- \
+	    $(HOSTSAN)/sensitivity --out $(SENS_CHECK) $(SENS_CHECK)/bad.csv
+	@echo "sensitivity: three roads tabulated and plotted; a bad road refused with its line"
