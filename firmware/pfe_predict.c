@@ -32,7 +32,7 @@
  *     slower, and the energy the platoon gives back would otherwise push
  *     the prediction below the lower bound. (M without the rotating mass
  *     mj: a few percent of a small term.)
- * The step work is summed by pfe_sim itself (pfe_sim_t.bound_*), in N * 2^2
+ * The step work is summed by pfe_sim itself (pfe_sim_sums_t), in N * 2^2
  * and nL as its own fuel.
  */
 #include "pfe_predict.h"
@@ -155,12 +155,13 @@ static int start_run(pfe_predict_t *p)
     const int rc = pfe_sim_init(&p->sim, pl, &p->cruise, &p->road, p->set_speed_mm_s,
                                 p->start_speed_mm_s,
                                 (step < PFE_SIM_STEP_MIN_MM) ? PFE_SIM_STEP_MIN_MM : step);
-    if ((rc == PFE_OK) && bound) {
+    memset(&p->sums, 0, sizeof p->sums);
+    if (bound) {
         /* The upper bound's drag is the slow platoon's, at the fast run's
          * speed; the lower bound's the fast platoon's at the slow run's. */
-        p->sim.bound_grade_20ppm = p->window_20ppm;
-        p->sim.bound_air_q32 = upper ? p->air_slow_q32 : p->air_fast_q32;
-        p->sim.bound_fuel_q20 = upper ? p->fuel_upper_q20 : p->fuel_lower_q20;
+        p->sums.bound_grade_20ppm = p->window_20ppm;
+        p->sums.bound_air_q32 = upper ? p->air_slow_q32 : p->air_fast_q32;
+        p->sums.bound_fuel_q20 = upper ? p->fuel_upper_q20 : p->fuel_lower_q20;
     }
     p->sim_ready = rc == PFE_OK;
     return rc;
@@ -236,7 +237,7 @@ static int64_t aux_nl(const pfe_predict_t *p, int64_t fq)
 static void publish(pfe_predict_t *p)
 {
     pfe_predict_result_t *r = &p->result;
-    const int64_t upper_nl = p->sim.bound_nl + aux_nl(p, p->fuel_upper_q20) +
+    const int64_t upper_nl = p->sums.bound_nl + aux_nl(p, p->fuel_upper_q20) +
                              kinetic_nl(p, p->fuel_upper_q20);
     const uint64_t lower = (p->lower_nl > 0) ? (uint64_t)p->lower_nl : 0U;
     const uint64_t upper = (upper_nl > 0) ? (uint64_t)upper_nl : 0U;
@@ -256,17 +257,17 @@ static void publish(pfe_predict_t *p)
 /* A run's steps within the budget left; moves to `next` at its end. */
 static uint32_t run_steps(pfe_predict_t *p, uint32_t units, pfe_predict_phase_t next)
 {
-    const int r = pfe_sim_run(&p->sim, &p->road, units);
+    const int r = pfe_sim_run(&p->sim, &p->road, units, &p->sums);
     if (r == PFE_ESTALL) {
         abandon(p, PFE_PREDICT_ESTALL);
     } else if (r == PFE_SIM_DONE) {
         if (p->phase == PFE_PREDICT_NOMINAL) {
             p->nominal_fuel_nl = p->sim.fuel_nl;
-            p->nominal_aux_nl = p->sim.aux_nl;
+            p->nominal_aux_nl = p->sums.aux_nl;
             p->nominal_time_q16 = p->sim.time_q16;
             p->nominal_end_speed_mm_s = pfe_sim_speed_mm_s(&p->sim);
         } else if (p->phase == PFE_PREDICT_SLOW) {
-            p->lower_nl = p->sim.bound_nl + aux_nl(p, p->fuel_lower_q20) +
+            p->lower_nl = p->sums.bound_nl + aux_nl(p, p->fuel_lower_q20) +
                           kinetic_nl(p, p->fuel_lower_q20);
         } else {
             /* FAST: publish() reads the sum from the simulation */

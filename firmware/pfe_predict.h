@@ -99,6 +99,7 @@ typedef struct {
     int16_t window_20ppm[PFE_PREVIEW_MAX_SAMPLES]; /* extreme grade around each sample, 20 ppm */
     pfe_road_t road;
     pfe_sim_t sim;
+    pfe_sim_sums_t sums;
     bool sim_ready;                    /* the phase's run is initialised */
     /* partial results */
     uint64_t nominal_fuel_nl;

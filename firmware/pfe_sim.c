@@ -69,11 +69,6 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     sim->steps = 0U;
     sim->time_q16 = 0U;
     sim->fuel_nl = 0U;
-    sim->aux_nl = 0U;
-    sim->bound_grade_20ppm = NULL;
-    sim->bound_air_q32 = 0;
-    sim->bound_fuel_q20 = 0;
-    sim->bound_nl = 0;
     sim->grade_ppm = road->grade_ppm[0];
     sim->accel_um_s2 = 0;
     sim->fuel_step_nl = 0U;
@@ -101,10 +96,9 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     return PFE_OK;
 }
 
-/* One step (pfe_sim_step()); inline so that pfe_sim_run()'s loops have no
- * call, and with_bound a constant in each so that a run without a bound
- * carries none of its cost. */
-static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, bool with_bound)
+/* One step (pfe_sim_step()), inline in pfe_sim_run()'s loop. */
+static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_sim_sums_t *sums,
+                                  bool with_sums, bool with_bound)
 {
     if (sim->position_mm >= sim->end_mm) {
         return PFE_SIM_DONE;
@@ -147,19 +141,21 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, bool w
         const int64_t work_nl = pfe_rshift_round((int64_t)f * work_coef, 22U);
         const int64_t aux_nl = pfe_rshift_round(sim->aux_fuel_q8 * (int64_t)dt_q16, 24U);
         fuel_step = (uint64_t)(work_nl + aux_nl);
-        sim->aux_nl += (uint64_t)aux_nl;
+        if (with_sums) {
+            sums->aux_nl += (uint64_t)aux_nl;
+        }
     }
-    if (with_bound && (force > 0)) {
+    if (with_sums && with_bound && (force > 0)) {
         /* Air, rolling and the bound's grade at the step's start speed, in
          * N * 2^2 as resistance_q2(), clamped to +-FUEL_FORCE_MAX_Q2; times
          * ds * fuel as the work above: below 2^63. */
         uint32_t k = (sim->position_mm + (ds / 2U)) / road->spacing_mm;
         k = (k < road->n_samples) ? k : (road->n_samples - 1U);
         const int64_t v2 = (int64_t)v_mm_s * (int64_t)v_mm_s;
-        int64_t f = pfe_rshift_round(sim->bound_air_q32 * v2, 30U) + sim->roll_q2 +
-                    pfe_rshift_round(sim->weight_q36 * ((int64_t)sim->bound_grade_20ppm[k] * 20), 34U);
+        int64_t f = pfe_rshift_round(sums->bound_air_q32 * v2, 30U) + sim->roll_q2 +
+                    pfe_rshift_round(sim->weight_q36 * ((int64_t)sums->bound_grade_20ppm[k] * 20), 34U);
         f = (f > FUEL_FORCE_MAX_Q2) ? FUEL_FORCE_MAX_Q2 : ((f < -FUEL_FORCE_MAX_Q2) ? -FUEL_FORCE_MAX_Q2 : f);
-        sim->bound_nl += pfe_rshift_round(f * ((int64_t)ds * sim->bound_fuel_q20), 22U);
+        sums->bound_nl += pfe_rshift_round(f * ((int64_t)ds * sums->bound_fuel_q20), 22U);
     }
     sim->fuel_nl = pfe_sat_add_u64(sim->fuel_nl, fuel_step);
     sim->fuel_step_nl = fuel_step;
@@ -172,27 +168,39 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, bool w
     return PFE_SIM_RUNNING;
 }
 
-int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road)
+int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps, pfe_sim_sums_t *sums)
 {
-    return step(sim, road, sim->bound_grade_20ppm != NULL);
-}
-
-int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps)
-{
-    /* On a local copy, which the compiler can keep in registers across the
-     * steps (the caller's object may alias anything). */
+    /* The state in locals the compiler can keep in registers across steps
+     * (through the pointers it would have to assume aliasing); one loop per
+     * kind of run, so that a run without sums carries none of their cost. */
     pfe_sim_t s = *sim;
-    const pfe_road_t r_copy = *road;
+    const pfe_road_t rd = *road;
+    road = &rd;
     int r = PFE_SIM_RUNNING;
-    if (s.bound_grade_20ppm != NULL) {
-        for (uint32_t k = 0U; (k < max_steps) && (r == PFE_SIM_RUNNING); k++) {
-            r = step(&s, &r_copy, true);
+    if (sums == NULL) {
+        uint32_t k = max_steps;
+        while ((k != 0U) && (r == PFE_SIM_RUNNING)) {
+            r = step(&s, road, NULL, false, false);
+            k -= (k != UINT32_MAX) ? 1U : 0U; /* UINT32_MAX: to the end */
         }
     } else {
-        for (uint32_t k = 0U; (k < max_steps) && (r == PFE_SIM_RUNNING); k++) {
-            r = step(&s, &r_copy, false);
+        pfe_sim_sums_t t = *sums;
+        if (t.bound_grade_20ppm == NULL) {
+            for (uint32_t k = 0U; (k < max_steps) && (r == PFE_SIM_RUNNING); k++) {
+                r = step(&s, road, &t, true, false);
+            }
+        } else {
+            for (uint32_t k = 0U; (k < max_steps) && (r == PFE_SIM_RUNNING); k++) {
+                r = step(&s, road, &t, true, true);
+            }
         }
+        *sums = t;
     }
     *sim = s;
     return r;
+}
+
+int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road)
+{
+    return pfe_sim_run(sim, road, 1U, NULL);
 }

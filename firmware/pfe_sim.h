@@ -65,16 +65,6 @@ typedef struct {
     uint32_t steps;
     uint64_t time_q16;       /* s * 2^16 */
     uint64_t fuel_nl;        /* platoon total, eq. 4.14 */
-    uint64_t aux_nl;         /* the auxiliaries' part of fuel_nl */
-    /* Optional work of a fuel bound (pfe_predict.h), summed over the steps
-     * where the controller pulls (Fw > 0): (bound_air v^2 + Fr + M g
-     * bound_grade[k]) ds * bound_fuel, v the step's starting speed, k the
-     * sample of its midpoint. Off while bound_grade_20ppm is NULL
-     * (pfe_sim_init() leaves it so). */
-    const int16_t *bound_grade_20ppm; /* one per road sample, in 20 ppm (+-25000) */
-    int64_t bound_air_q32;           /* as pfe_vehicle_t.air_q32 */
-    int64_t bound_fuel_q20;          /* as pfe_vehicle_t.fuel_q20 */
-    int64_t bound_nl;                /* the sum so far, nL (may be negative downhill) */
     /* What the last step used and produced. */
     int32_t grade_ppm;
     int32_t wheel_force_n;   /* controller output */
@@ -103,12 +93,31 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
 int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road);
 
 /*
+ * Sums over a run besides its fuel (pfe_sim_run()), for the prediction's
+ * bounds (pfe_predict.h):
+ *   aux_nl    the auxiliaries' part of fuel_nl;
+ *   bound_nl  when bound_grade_20ppm is not NULL, the work of a fuel bound
+ *             over the steps where the controller pulls (Fw > 0):
+ *             (bound_air v^2 + Fr + M g bound_grade[k]) ds * bound_fuel, v
+ *             the step's starting speed, k the sample of its midpoint;
+ *             negative downhill.
+ */
+typedef struct {
+    const int16_t *bound_grade_20ppm; /* one per road sample, in 20 ppm (+-25000); NULL: no bound */
+    int64_t bound_air_q32;            /* as pfe_vehicle_t.air_q32 */
+    int64_t bound_fuel_q20;           /* as pfe_vehicle_t.fuel_q20 */
+    int64_t bound_nl;
+    uint64_t aux_nl;
+} pfe_sim_sums_t;
+
+/*
  * Up to max_steps steps (the same as calling pfe_sim_step() that often, at
- * less cost per step): stops early at the end of the road or on a stall.
+ * less cost per step), adding to *sums unless it is NULL: stops early at the
+ * end of the road or on a stall; max_steps UINT32_MAX runs to the end.
  * Returns PFE_SIM_RUNNING (max_steps taken, more to go), PFE_SIM_DONE or
  * PFE_ESTALL.
  */
-int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps);
+int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps, pfe_sim_sums_t *sums);
 
 /* Speed in mm/s, rounded. */
 int32_t pfe_sim_speed_mm_s(const pfe_sim_t *sim);

@@ -129,7 +129,7 @@ static int bench_sim(void)
         return -1;
     }
     const uint64_t t0 = hal_mps2_icount_now();
-    const int rc = pfe_sim_run(&sim, &road, UINT32_MAX);
+    const int rc = pfe_sim_run(&sim, &road, UINT32_MAX, NULL);
     const uint64_t t1 = hal_mps2_icount_now();
     if ((rc != PFE_SIM_DONE) || (sim.steps == 0U)) {
         return -1;
