@@ -215,9 +215,12 @@ static void test_sim_arguments_and_last_short_step(void **state)
     assert_int_equal(a.fuel_nl, b.fuel_nl);
     assert_int_equal(pfe_sim_run(&a, &road, 100U, &sums), PFE_SIM_DONE);
     assert_int_equal(a.steps, 5);
-    /* The auxiliaries' part: 4 kW over the whole time, at 73224 nL/mJ * 2^-20. */
+    /* The auxiliaries' part: Paux over the whole time (fuel flows in every
+     * step here), at the platoon's nL per mJ: within a nL of rounding a step. */
+    const uint64_t aux_expected = (a.time_q16 * ((uint64_t)pl.object.power_aux_w * 1000U) *
+                                   (uint64_t)pl.object.fuel_q20) >> 36;
     assert_true(sums.aux_nl < a.fuel_nl);
-    assert_true(labs((long)sums.aux_nl - (long)((a.time_q16 / 65536.0) * 4000.0 * 1000.0 * 73224.0 / 1048576.0)) < 1000L);
+    assert_in_range(sums.aux_nl, aux_expected - 5U, aux_expected + 5U);
 }
 
 int main(void)
