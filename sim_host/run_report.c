@@ -271,6 +271,10 @@ static int parse_args(int argc, char **argv, options_t *o)
                 o->vehicles);
         return 2;
     }
+    if ((o->junit != NULL) && (o->expect == NULL)) {
+        fprintf(stderr, "run_report: --junit needs --expect (one testcase per expectation)\n");
+        return 2;
+    }
     return 0;
 }
 
