@@ -572,7 +572,7 @@ static int write_plot_script(const char *gp_path, const char *csv_path, const ch
         return -1;
     }
     fprintf(f, "# Written by run_report: gnuplot %s\n", gp_path);
-    fprintf(f, "set terminal pngcairo size 1100,1400 font 'sans,10'\nset output ");
+    fprintf(f, "set terminal pngcairo noenhanced size 1100,1400 font 'sans,10'\nset output ");
     gp_quoted(f, png_path);
     fprintf(f, "\nset datafile separator ','\nset datafile missing 'NA'\n");
     fprintf(f, "set grid\nset key top right opaque box\nset lmargin 12\nset xlabel 'time (s)'\n");
