@@ -21,7 +21,7 @@
  *     from --config-source (default 0xE0);
  *   - PFE_GradePreview, unless --no-preview: every --preview-period-s
  *     (default 10 s) a burst of one header and ceil(count / 3) data frames,
- *     1 ms apart, starting 5 ms after a 10 ms tick; count is
+ *     5 ms apart, starting 2.5 ms after a 10 ms tick; count is
  *     --preview-samples (default 1000, at most what is left of the road)
  *     road grades --preview-spacing-m apart (default 12 m) from the
  *     platoon's position at that tick; PreviewId counts up modulo 16; from
@@ -56,8 +56,11 @@
 #define T0_S 1700000000ULL
 #define TICK_US 10000U
 #define CONFIG_PERIOD_TICKS 100U      /* PFE_PlatoonConfig, 1000 ms */
-#define PREVIEW_OFFSET_US 5000U       /* a burst starts between two ticks */
-#define PREVIEW_FRAME_GAP_US 1000U
+/* A burst starts between two ticks, its frames 5 ms apart, never on a tick:
+ * 1 ms apart, a burst would take half of a 250 kbit/s J1939 bus (a 29-bit
+ * frame with 8 bytes is 128 bits before stuffing). */
+#define PREVIEW_OFFSET_US 2500U
+#define PREVIEW_FRAME_GAP_US 5000U
 #define SPEED_MAX_KMH 250.99609375    /* SPN 84's largest valid value */
 #define PITCH_MIN_DEG (-64.0)         /* SPN 3318's valid range */
 #define PITCH_MAX_DEG 64.51

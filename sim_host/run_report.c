@@ -78,7 +78,7 @@ enum {
     Q_DURATION, Q_DISTANCE, Q_MEAN_SPEED, Q_INPUT_FRAMES, Q_MODULE_FRAMES, Q_LFE1, Q_LFE1_NA,
     Q_MAX_RATE_PCT, Q_MAX_RATE_LH, Q_MAX_PRATE_PCT, Q_MAX_PRATE_LH, Q_TOTAL, Q_REF_TOTAL,
     Q_TOTAL_ERR, Q_PTOTAL, Q_REF_PTOTAL, Q_PTOTAL_ERR, Q_OVERRUNS, Q_RX_DROPPED, Q_TX_DROPPED,
-    Q_NORMAL_PCT, Q_CAPTURE_DROPPED, Q_COUNT
+    Q_NORMAL_PCT, Q_CAPTURE_DROPPED, Q_INPUT_EVENTS, Q_DISTURBED_PCT, Q_COUNT
 };
 
 typedef struct {
@@ -97,7 +97,9 @@ static quantity_t g_q[Q_COUNT] = {
     [Q_MODULE_FRAMES] = {"module_frames", "J1939 frames from the module", 0.0, false, NULL},
     [Q_LFE1] = {"lfe1_frames", "LFE1 frames judged (after warm-up, up to the last input)", 0.0,
                 false, NULL},
-    [Q_LFE1_NA] = {"lfe1_not_available", "of those, fuel rate not available", 0.0, false, NULL},
+    [Q_LFE1_NA] = {"lfe1_not_available",
+                   "of those, fuel rate not available where the reference has one", 0.0, false,
+                   NULL},
     [Q_MAX_RATE_PCT] = {"max_rate_error_pct", "largest LFE1 fuel rate error, % of reference", 0.0,
                         false, NULL},
     [Q_MAX_RATE_LH] = {"max_rate_error_l_h", "largest LFE1 fuel rate error, L/h", 0.0, false, NULL},
@@ -124,6 +126,12 @@ static quantity_t g_q[Q_COUNT] = {
                       false, NULL},
     [Q_CAPTURE_DROPPED] = {"capture_dropped", "frames the recorder reported dropped (DROPCOUNT)",
                            0.0, false, NULL},
+    [Q_INPUT_EVENTS] = {"input_timing_events",
+                        "SSI more than 30 ms apart, CCVS1 outside 50 to 150 ms apart", 0.0, false,
+                        NULL},
+    [Q_DISTURBED_PCT] = {"rate_frames_disturbed_pct",
+                         "LFE1 and PFE_PlatoonFuel not judged: 2 s after an input timing event "
+                         "or 5 lost module ticks, %", 0.0, false, NULL},
 };
 
 static void set_q(int k, double v)
@@ -793,24 +801,128 @@ static size_t state_before(const ref_run_t *run, uint64_t t_us, size_t *hint)
 }
 
 /* The module's tick came at most MODULE_LATENCY_US before its frame: of
- * the states a tick in that span could have seen, the rate nearest to got. */
+ * the states a tick in that span could have seen, the valid rate nearest to
+ * got. Returns false when none of them is valid (the reference has no
+ * estimate there either). */
 #define MODULE_LATENCY_US 5000U
-static double nearest_rate(const ref_run_t *run, size_t last, uint64_t t_us, bool platoon,
-                           double got)
+static bool nearest_rate(const ref_run_t *run, size_t last, uint64_t t_us, bool platoon,
+                         double got, double *best)
 {
-    double best = 0.0, best_d = INFINITY;
+    double best_d = INFINITY;
+    bool any = false;
+    *best = 0.0;
     for (size_t k = last; k < run->n_states; k--) {
         const state_t *st = &run->states[k];
         const double r = platoon ? st->platoon_rate : st->own_rate;
-        if (fabs(got - r) < best_d) {
+        if (st->valid && (fabs(got - r) < best_d)) {
             best_d = fabs(got - r);
-            best = r;
+            *best = r;
+            any = true;
         }
         if (st->t_us + MODULE_LATENCY_US <= t_us) {
             break; /* in effect from before the span: the oldest candidate */
         }
     }
-    return best;
+    return any;
+}
+
+/*
+ * Spans in which the capture cannot say what the module saw or did, so that
+ * its rates are not held against a reference ticking on ideal time:
+ *   - input timing: SSI frames more than 30 ms apart, or CCVS1 frames less
+ *     than 50 or more than 150 ms apart (a stalled or bunched replay: a
+ *     bunch reaches the module later than its timestamps say, and the speed
+ *     filter counts the periods between samples);
+ *   - the module lost ticks: PFE_Status TickOverruns went up by
+ *     LOST_TICKS_MIN or more since the previous PFE_Status (its estimator
+ *     skipped steps: with 5 of the 10 ticks between two CCVS1 samples lost
+ *     it counts no period between them; fewer cannot change its count).
+ * Each span runs from the last good frame to DISTURB_RECOVERY_US after the
+ * event, the time the speed filter takes to forget it (its acceleration
+ * gain is 0.05 per 100 ms sample).
+ */
+#define DISTURB_RECOVERY_US 2000000U
+#define LOST_TICKS_MIN 5U
+#define SSI_GAP_MAX_US 30000U
+#define CCVS1_GAP_MIN_US 50000U
+#define CCVS1_GAP_MAX_US 150000U
+
+typedef struct {
+    uint64_t from_us, to_us;
+} span_t;
+
+typedef struct {
+    span_t *spans;          /* owned */
+    size_t n, room;
+    size_t input_events, overrun_events;
+} disturb_t;
+
+static void disturb_add(disturb_t *d, uint64_t from_us, uint64_t event_us)
+{
+    if (d->n == d->room) {
+        const size_t want = (d->room == 0U) ? 64U : (d->room * 2U);
+        span_t *grown = realloc(d->spans, want * sizeof *grown);
+        if (grown == NULL) {
+            return; /* out of memory: the span is judged like any other */
+        }
+        d->spans = grown;
+        d->room = want;
+    }
+    d->spans[d->n].from_us = from_us;
+    d->spans[d->n].to_us = event_us + DISTURB_RECOVERY_US;
+    d->n++;
+}
+
+static void disturb_find(const capture_t *cap, uint8_t module_sa, disturb_t *d)
+{
+    memset(d, 0, sizeof *d);
+    uint64_t last_ssi = 0U, last_ccvs1 = 0U, last_status = 0U;
+    bool have_ssi = false, have_ccvs1 = false, have_status = false;
+    uint32_t overruns = 0U;
+    for (size_t k = 0U; k < cap->n; k++) {
+        const capture_rec_t *r = &cap->recs[k];
+        const uint32_t pgn = pfe_j1939_pgn(r->f.id);
+        if (pfe_j1939_source(r->f.id) != module_sa) {
+            if (pgn == PFE_PGN_SSI) {
+                if (have_ssi && ((r->t_us - last_ssi) > SSI_GAP_MAX_US)) {
+                    disturb_add(d, last_ssi, r->t_us);
+                    d->input_events++;
+                }
+                have_ssi = true;
+                last_ssi = r->t_us;
+            } else if (pgn == PFE_PGN_CCVS1) {
+                const uint64_t gap = r->t_us - last_ccvs1;
+                if (have_ccvs1 && ((gap < CCVS1_GAP_MIN_US) || (gap > CCVS1_GAP_MAX_US))) {
+                    disturb_add(d, last_ccvs1, r->t_us);
+                    d->input_events++;
+                }
+                have_ccvs1 = true;
+                last_ccvs1 = r->t_us;
+            }
+            continue;
+        }
+        pfe_msg_status_t m;
+        if ((pgn == PFE_PGN_STATUS) && (pfe_codec_decode_status(&r->f, &m) >= 0) &&
+            (m.tick_overruns.state == PFE_SIG_VALID)) {
+            if (m.tick_overruns.value >= overruns + LOST_TICKS_MIN) {
+                disturb_add(d, have_status ? last_status : cap->recs[0].t_us, r->t_us);
+                d->overrun_events++;
+            }
+            overruns = m.tick_overruns.value;
+            have_status = true;
+            last_status = r->t_us;
+        }
+    }
+}
+
+static bool disturbed(const disturb_t *d, uint64_t t_us)
+{
+    for (size_t k = 0U; k < d->n; k++) {
+        if ((t_us >= d->spans[k].from_us) && (t_us <= d->spans[k].to_us)) {
+            return true;
+        }
+    }
+    return false;
 }
 
 typedef struct {
@@ -818,6 +930,8 @@ typedef struct {
     totals_t own_total, platoon_total;
     size_t status_judged, status_normal;
     size_t lfe1, lfe1_na;
+    size_t rate_frames, rate_disturbed; /* LFE1 and PFE_PlatoonFuel after warm-up */
+    size_t input_events, overrun_events;
     size_t csv_rows;
     size_t n_in, n_mod;
     uint64_t t_first_in, t_last_in;
@@ -842,6 +956,10 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
         }
     }
     const uint64_t warm_us = a->t_first_in + (uint64_t)llround(o->warmup_s * 1e6);
+    static disturb_t dist;
+    disturb_find(cap, (uint8_t)o->module_sa, &dist);
+    a->input_events = dist.input_events;
+    a->overrun_events = dist.overrun_events;
     double speed_kmh = 0.0, grade_pct = 0.0, last_speed_m_s = 0.0;
     bool have_speed = false, have_grade = false;
     uint64_t last_speed_us = 0U;
@@ -896,10 +1014,14 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
                 if (m.fuel_used_ul.state == PFE_SIG_VALID) {
                     totals_note(&a->platoon_total, (double)m.fuel_used_ul.value / 1e6, platoon_used);
                 }
-                if (judged && (m.fuel_rate_nl_s.state == PFE_SIG_VALID)) {
+                const bool calm = judged && !disturbed(&dist, r->t_us);
+                a->rate_frames += judged ? 1U : 0U;
+                a->rate_disturbed += (judged && !calm) ? 1U : 0U;
+                if (calm && (m.fuel_rate_nl_s.state == PFE_SIG_VALID)) {
                     const double got = m.fuel_rate_nl_s.value / 1e9;
-                    rate_compare(&a->platoon, got, nearest_rate(run, st, r->t_us, true, got), t_s,
-                                 o->floor_l_h);
+                    double want = 0.0;
+                    (void)nearest_rate(run, st, r->t_us, true, got, &want);
+                    rate_compare(&a->platoon, got, want, t_s, o->floor_l_h);
                 }
             }
         } else if (pgn == PFE_PGN_STATUS) {
@@ -928,12 +1050,19 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
             const bool valid = m.fuel_rate_nl_s.state == PFE_SIG_VALID;
             const double got = m.fuel_rate_nl_s.value / 1e9;
             if (judged) {
+                /* Not available is right where the reference has no
+                 * estimate either; a rate is compared with 0 there. */
+                const bool calm = !disturbed(&dist, r->t_us);
+                double want = 0.0;
+                const bool ref_valid = have_tick && nearest_rate(run, st, r->t_us, false, got, &want);
                 a->lfe1++;
-                if (!valid) {
-                    a->lfe1_na++;
+                a->rate_frames++;
+                if (!calm) {
+                    a->rate_disturbed++;
+                } else if (!valid) {
+                    a->lfe1_na += ref_valid ? 1U : 0U;
                 } else {
-                    rate_compare(&a->own, got, nearest_rate(run, st, r->t_us, false, got), t_s,
-                                 o->floor_l_h);
+                    rate_compare(&a->own, got, want, t_s, o->floor_l_h);
                 }
             }
             if (have_tick && (r->t_us <= a->t_last_in)) {
@@ -949,6 +1078,7 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
             }
         }
     }
+    free(dist.spans);
 }
 
 static void set_quantities(const analysis_t *a, const capture_t *cap)
@@ -963,6 +1093,12 @@ static void set_quantities(const analysis_t *a, const capture_t *cap)
         set_q(Q_MEAN_SPEED, a->distance_m / dur * 3.6);
     } else {
         unset_q(Q_MEAN_SPEED, "the inputs last no time");
+    }
+    set_q(Q_INPUT_EVENTS, (double)a->input_events);
+    if (a->rate_frames > 0U) {
+        set_q(Q_DISTURBED_PCT, 100.0 * (double)a->rate_disturbed / (double)a->rate_frames);
+    } else {
+        unset_q(Q_DISTURBED_PCT, "no LFE1 or PFE_PlatoonFuel frame after warm-up");
     }
     set_q(Q_LFE1, (double)a->lfe1);
     set_q(Q_LFE1_NA, (double)a->lfe1_na);
@@ -1077,6 +1213,10 @@ static void print_summary(const options_t *o, const capture_t *cap, const analys
     printf("  LFE1 judged: %.0f (%.0f not available), from %.1f s after the first input to the "
            "last; relative errors where the reference is at least %.1f L/h (%zu frames)\n",
            g_q[Q_LFE1].value, g_q[Q_LFE1_NA].value, o->warmup_s, o->floor_l_h, a->own.judged_pct);
+    printf("  rates not judged: %zu of %zu (%s), within %.0f s after %zu input timing events and "
+           "%zu PFE_Status reports of %u or more lost ticks\n", a->rate_disturbed, a->rate_frames,
+           fmt_q(Q_DISTURBED_PCT, 1, "%", b1, sizeof b1), DISTURB_RECOVERY_US / 1e6, a->input_events,
+           a->overrun_events, LOST_TICKS_MIN);
     printf("  module status: tick overruns %s, rx dropped %s, tx dropped %s, normal mode %s\n",
            fmt_q(Q_OVERRUNS, 0, "", b1, sizeof b1), fmt_q(Q_RX_DROPPED, 0, "", b2, sizeof b2),
            fmt_q(Q_TX_DROPPED, 0, "", b3, sizeof b3), fmt_q(Q_NORMAL_PCT, 1, "%", b4, sizeof b4));

@@ -10,6 +10,7 @@
 # 2 % wrong fails them (exit 1, JUnit failures naming the quantities; its
 # own total reads 1.87 % off: HRLFC's 0.001 L step on 0.198 L); a bad
 # expectation file and a bad capture are refused with file and line (exit 2);
+# rates right after gaps in the inputs are left out and counted;
 # a quantity that cannot be measured fails its expectation.
 # Exit status: the number of failed checks.
 set -u
@@ -95,6 +96,22 @@ wrong_module() {
         has "$out/wrong/junit.xml" '<failure type="expectation" message="platoon_fuel_error_pct = 2\.'
 }
 
+# SSI frames missing for 90 ms, and the CCVS1 of 20.0 s sent at 20.2 s, just
+# before the one of 20.2 s: three input timing events (SSI 100 ms apart,
+# CCVS1 300 ms and 0 ms apart); the rates in the 2 s after each are left out,
+# and counted.
+input_gap() {
+    awk '($1 == "(1700000020.200000)") && ($3 ~ /^0CF013/) { print "(1700000020.200000) vcan0 18FEF100#FF005AFFFFFFFFFF" }
+         !(($1 > "(1700000010.000000)") && ($1 < "(1700000010.090000)") && ($3 ~ /^0CF013/)) &&
+         !(($1 == "(1700000020.000000)") && ($3 ~ /^18FEF1/)) { print }' \
+        "$out/drive30.log" >"$out/gap30.log"
+    runs 0 "$offline" "$out/gap30.log" "$out/gap.log" || return 1
+    runs 0 "$report" "$out/gap.log" --out "$out/gap/report" --no-plot --expect "$out/accuracy.expect" &&
+        has "$out/last.out" "verdict PASS" &&
+        has "$out/gap/report.metrics" '^input_timing_events 3$' &&
+        has "$out/last.out" "rates not judged: [1-9][0-9]* of 500"
+}
+
 bad_expectations() {
     printf 'max_rate_error_pct 1.0\n\n# fine so far\nfuel_l 1.0\n' >"$out/bad1.expect"
     runs 2 "$report" "$out/right.log" --out "$out/bad/report" --no-plot --expect "$out/bad1.expect" &&
@@ -132,6 +149,7 @@ not_measured() {
 check right_module right_module
 check other_phase other_phase
 check wrong_module wrong_module
+check input_gap input_gap
 check bad_expectations bad_expectations
 check bad_capture bad_capture
 check not_measured not_measured
