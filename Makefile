@@ -1,7 +1,8 @@
 # Platoon fuel-prediction module: firmware, host tools, tests.
 #
 #   make            host tools (build/host/)
-#   make run        simulate the bundled hilly road, fixed point against double
+#   make run        the module on vcan fed the bundled hilly drive, judged: summary, CSV, plot
+#   make run-sim    simulate the bundled hilly road, fixed point against double
 #   make test       every test: host (ASan, UBSan), Cortex-M4 under QEMU, image checks
 #   make firmware   the Cortex-M4 image for QEMU's mps2-an386 (build/m4/)
 #   make bench      figures: instructions, memory, accuracy (bench: lines)
@@ -37,7 +38,7 @@ DEPS_STAMP := $(BUILD)/.deps-ok
 all: tools
 
 help:
-	@sed -n '3,10p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,11p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---------------------------------------------------------------- set-up
 
@@ -50,7 +51,8 @@ deps: $(DEPS_STAMP)
 
 # ---------------------------------------------------------------- host tools
 
-TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu $(HOST)/pfe_ecu_replay $(HOST)/sensitivity
+TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu $(HOST)/pfe_ecu_replay \
+         $(HOST)/sensitivity $(HOST)/drivegen $(HOST)/pfe_record $(HOST)/run_report
 tools: $(TOOLS)
 
 $(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
@@ -80,11 +82,6 @@ $(HOST)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 $(HOST)/road2c: sim_host/road2c.c sim_host/road_csv.c sim_host/road_csv.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -Isim_host -o $@ sim_host/road2c.c sim_host/road_csv.c -lm
-
-run: $(HOST)/platoon_sim
-	$(HOST)/platoon_sim --road $(ROADS)/hilly.csv --vehicles 5 --set-speed-kmh 90 \
-	    --trace $(BUILD)/run_hilly_trace.csv
-	@echo "per-step trace: $(BUILD)/run_hilly_trace.csv"
 
 # ---------------------------------------------------------------- host tests (ASan, UBSan)
 
@@ -147,6 +144,7 @@ include mk/m4.mk
 # (clamps, saturating adds) live in their own files and must inline.
 include mk/vcan.mk
 include mk/sensitivity.mk
+include mk/run.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
@@ -218,9 +216,9 @@ E2E_STATIC := -static -O2
 $(E2E_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
-$(E2E_PAYLOAD)/ecu_check: sim_host/ecu_check.c sim_host/ref_model.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(E2E_PAYLOAD)/ecu_check: sim_host/ecu_check.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/ecu_check.c sim_host/ref_model.c $(FW_SRC) -lm
+	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
 $(HOST)/drivegen: sim_host/drivegen.c sim_host/drive_trace.c $(REF_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/drivegen.c $(REF_SRC) $(FW_SRC) -lm
@@ -244,9 +242,9 @@ e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log fau
 
 # One log through the firmware on the host and in the Cortex-M4 image, in
 # the log's time: identical records; then judged (tests/replay/host_vs_m4.sh).
-$(HOST)/ecu_check: sim_host/ecu_check.c sim_host/ref_model.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOST)/ecu_check: sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_check.c sim_host/ref_model.c $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
 $(HOST)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(FW_SRC)
@@ -256,7 +254,8 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 	sh tests/replay/host_vs_m4.sh $(BUILD)/replay $(HOST) $(M4_OUT)/pfe_ecu_mps2.elf \
 	    $(E2E_PAYLOAD)/drive.log
 
-test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test test-sensitivity
+test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
+      test-sensitivity test-run-host test-drive-logs test-record-vm
 
 # ---------------------------------------------------------------- benchmarks
 

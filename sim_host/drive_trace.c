@@ -44,7 +44,7 @@ int drive_trace_make(const int32_t *grade_ppm, uint32_t n_samples, uint32_t spac
     size_t cap = 1024U;
     drive_tick_t *ticks = malloc(sizeof(drive_tick_t) * cap);
     size_t n = 0U;
-    double t_prev = 0.0, v_prev = v0;
+    double t_prev = 0.0, v_prev = v0, x_prev = 0.0;
     int rc = 0;
     while ((ticks != NULL) && ((rc = ref_sim_step(&sim, &road)) == 1)) {
         /* Emit every 10 ms tick in (t_prev, sim.time]. */
@@ -63,6 +63,7 @@ int drive_trace_make(const int32_t *grade_ppm, uint32_t n_samples, uint32_t spac
                 ticks = grown;
             }
             ticks[n].true_speed = v;
+            ticks[n].position_m = x_prev + (w * (sim.position - x_prev));
             ticks[n].speed_fresh = (n % 10U) == 0U;
             ticks[n].speed_mm_s = ticks[n].speed_fresh ? drive_spn84_quantise_mm_s(v)
                                                        : ticks[n - 1U].speed_mm_s;
@@ -71,6 +72,7 @@ int drive_trace_make(const int32_t *grade_ppm, uint32_t n_samples, uint32_t spac
         }
         t_prev = sim.time;
         v_prev = sim.speed;
+        x_prev = sim.position;
     }
     free(grade);
     if (ticks == NULL) {
@@ -92,4 +94,32 @@ void drive_trace_free(drive_trace_t *t)
     free(t->ticks);
     t->ticks = NULL;
     t->n_ticks = 0U;
+}
+
+void drive_noise_seed(drive_noise_t *n, uint64_t seed)
+{
+    n->state = seed;
+}
+
+uint64_t drive_noise_u64(drive_noise_t *n)
+{
+    n->state += 0x9E3779B97F4A7C15ULL;
+    uint64_t z = n->state;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
+double drive_noise_uniform(drive_noise_t *n)
+{
+    return (double)(drive_noise_u64(n) >> 11) * 0x1.0p-53;
+}
+
+double drive_noise_gauss(drive_noise_t *n)
+{
+    double sum = 0.0;
+    for (int k = 0; k < 12; k++) {
+        sum += drive_noise_uniform(n);
+    }
+    return sum - 6.0;
 }

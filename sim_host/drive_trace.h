@@ -21,6 +21,7 @@ typedef struct {
     bool speed_fresh;    /* a CCVS1 sample arrived at this tick */
     int32_t grade_ppm;   /* grade under the platoon */
     double true_speed;   /* m/s, unquantised */
+    double position_m;   /* distance driven along the road, interpolated as the speed */
 } drive_tick_t;
 
 typedef struct {
@@ -38,5 +39,35 @@ void drive_trace_free(drive_trace_t *t);
 /* SPN 84 round trip: m/s to the 1/256 km/h raw value (rounded) and back to
  * mm/s (rounded). */
 int32_t drive_spn84_quantise_mm_s(double speed_m_s);
+
+/*
+ * Reproducible sensor noise for generated drives.
+ *
+ * A seeded generator whose output depends on nothing but the seed: SplitMix64
+ * (Steele, Lea and Flood, "Fast splittable pseudorandom number generators",
+ * OOPSLA 2014) for the integers, and an approximately normal deviate made of
+ * additions only (Irwin-Hall: the sum of 12 uniforms minus 6), so that no
+ * libm function whose last bit may differ between C libraries decides a
+ * sample: a drive generated with noise is the same file on every machine.
+ * The caller owns the state; all functions are O(1), reentrant on distinct
+ * states, and cannot fail.
+ */
+typedef struct {
+    uint64_t state;
+} drive_noise_t;
+
+/* Any seed is valid, 0 included. */
+void drive_noise_seed(drive_noise_t *n, uint64_t seed);
+
+/* Next SplitMix64 output (seed 0 gives 0xE220A8397B1DCDAF first). */
+uint64_t drive_noise_u64(drive_noise_t *n);
+
+/* Uniform in [0, 1): the top 53 bits of the next output times 2^-53. */
+double drive_noise_uniform(drive_noise_t *n);
+
+/* Mean 0, standard deviation 1, always within (-6, 6): the sum of the next
+ * 12 uniforms minus 6. Its tails are lighter than a normal's beyond about 3
+ * standard deviations, which suits a sensor's noise (no wild outliers). */
+double drive_noise_gauss(drive_noise_t *n);
 
 #endif /* DRIVE_TRACE_H */

@@ -1,0 +1,157 @@
+#!/bin/sh
+# run_report judged on captures made without a bus: the firmware's ECU run
+# in simulated time on the first 30 s of the bundled hilly drive
+# (tests/host/ecu_offline.c), right and deliberately wrong.
+#
+#   tests/host/run_report_test.sh RUN_REPORT ECU_OFFLINE HILLY.log OUT_DIR
+#
+# Checks: a right module passes its expectations (exit 0, JUnit without
+# failures, CSV, metrics and PNG written), whatever its tick phase; a module
+# 2 % wrong fails them (exit 1, JUnit failures naming the quantities; its
+# own total reads 1.87 % off: HRLFC's 0.001 L step on 0.198 L); a bad
+# expectation file and a bad capture are refused with file and line (exit 2);
+# rates right after gaps in the inputs are left out and counted;
+# a quantity that cannot be measured fails its expectation.
+# Exit status: the number of failed checks.
+set -u
+report=$1
+offline=$2
+hilly=$3
+out=$4
+rm -rf "$out"
+mkdir -p "$out"
+failed=0
+
+check() {
+    name=$1
+    shift
+    if "$@"; then
+        echo "run_report_test: $name ok"
+    else
+        echo "run_report_test: $name FAILED"
+        failed=$((failed + 1))
+    fi
+}
+
+# $1 expected exit status, then the command; output in $out/last.out/.err
+runs() {
+    want=$1
+    shift
+    "$@" >"$out/last.out" 2>"$out/last.err"
+    got=$?
+    if [ "$got" -ne "$want" ]; then
+        echo "  '$*' exited $got, not $want"
+        sed 's/^/  | /' "$out/last.out" "$out/last.err" | tail -n 30
+        return 1
+    fi
+}
+
+has() {
+    grep -q -- "$2" "$1" || { echo "  '$2' not in $1:"; sed 's/^/  | /' "$1" | tail -n 30; return 1; }
+}
+
+awk '$1 < "(1700000030.000000)"' "$hilly" >"$out/drive30.log"
+cat >"$out/accuracy.expect" <<'EOF'
+# the fixed-point module against the reference
+max_rate_error_pct 1.0
+max_platoon_rate_error_pct 1.0     # platoon
+total_fuel_error_pct <= 0.5
+platoon_fuel_error_pct 0.5
+lfe1_frames >= 240
+lfe1_not_available 0
+distance_km 0.75 2%
+EOF
+
+right_module() {
+    runs 0 "$offline" "$out/drive30.log" "$out/right.log" || return 1
+    runs 0 "$report" "$out/right.log" --out "$out/right/report" --expect "$out/accuracy.expect" \
+        --junit "$out/right/junit.xml" || return 1
+    has "$out/last.out" "verdict PASS: 7 of 7 expectations met" &&
+        has "$out/right/junit.xml" '<testsuite name="run_report" tests="7" failures="0"' &&
+        has "$out/right/junit.xml" '<testcase classname="run_report.right.log" name="distance_km"' &&
+        has "$out/right/report.csv" '^time_s,speed_kmh,grade_pct,module_rate_l_h,ref_rate_l_h,module_total_l,ref_total_l$' &&
+        has "$out/right/report.metrics" '^lfe1_not_available 0$' || return 1
+    rows=$(($(wc -l <"$out/right/report.csv") - 1))
+    [ "$rows" -ge 290 ] || { echo "  only $rows CSV rows"; return 1; }
+    [ "$(head -c 8 "$out/right/report.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] ||
+        { echo "  $out/right/report.png is not a PNG"; return 1; }
+}
+
+other_phase() {
+    runs 0 "$offline" "$out/drive30.log" "$out/phase.log" --phase-us 9700 || return 1
+    runs 0 "$report" "$out/phase.log" --out "$out/phase/report" --no-plot \
+        --expect "$out/accuracy.expect" || return 1
+    has "$out/last.out" "verdict PASS"
+}
+
+wrong_module() {
+    runs 0 "$offline" "$out/drive30.log" "$out/wrong.log" --scale-fuel 1.02 || return 1
+    runs 1 "$report" "$out/wrong.log" --out "$out/wrong/report" --no-plot \
+        --expect "$out/accuracy.expect" --junit "$out/wrong/junit.xml" || return 1
+    has "$out/last.out" "FAIL  max_rate_error_pct = 2\." &&
+        has "$out/last.out" "FAIL  total_fuel_error_pct = 1\.8" &&
+        has "$out/last.out" "pass  distance_km" &&
+        has "$out/last.out" "verdict FAIL: 3 of 7 expectations met" &&
+        has "$out/wrong/junit.xml" 'tests="7" failures="4"' &&
+        has "$out/wrong/junit.xml" '<failure type="expectation" message="platoon_fuel_error_pct = 2\.'
+}
+
+# SSI frames missing for 90 ms, and the CCVS1 of 20.0 s sent at 20.2 s, just
+# before the one of 20.2 s: three input timing events (SSI 100 ms apart,
+# CCVS1 300 ms and 0 ms apart); the rates in the 2 s after each are left out,
+# and counted.
+input_gap() {
+    awk '($1 == "(1700000020.200000)") && ($3 ~ /^0CF013/) { print "(1700000020.200000) vcan0 18FEF100#FF005AFFFFFFFFFF" }
+         !(($1 > "(1700000010.000000)") && ($1 < "(1700000010.090000)") && ($3 ~ /^0CF013/)) &&
+         !(($1 == "(1700000020.000000)") && ($3 ~ /^18FEF1/)) { print }' \
+        "$out/drive30.log" >"$out/gap30.log"
+    runs 0 "$offline" "$out/gap30.log" "$out/gap.log" || return 1
+    runs 0 "$report" "$out/gap.log" --out "$out/gap/report" --no-plot --expect "$out/accuracy.expect" &&
+        has "$out/last.out" "verdict PASS" &&
+        has "$out/gap/report.metrics" '^input_timing_events 3$' &&
+        has "$out/last.out" "rates not judged: [1-9][0-9]* of 500"
+}
+
+bad_expectations() {
+    printf 'max_rate_error_pct 1.0\n\n# fine so far\nfuel_l 1.0\n' >"$out/bad1.expect"
+    runs 2 "$report" "$out/right.log" --out "$out/bad/report" --no-plot --expect "$out/bad1.expect" &&
+        has "$out/last.err" "bad1.expect:4: unknown quantity 'fuel_l'" || return 1
+    printf 'max_rate_error_pct 1.0\ntotal_fuel_l 0x1 1%%\n' >"$out/bad2.expect"
+    runs 2 "$report" "$out/right.log" --out "$out/bad/report" --no-plot --expect "$out/bad2.expect" &&
+        has "$out/last.err" "bad2.expect:2: bad number '0x1'" || return 1
+    printf 'total_fuel_l 1 2 3\n' >"$out/bad3.expect"
+    runs 2 "$report" "$out/right.log" --out "$out/bad/report" --no-plot --expect "$out/bad3.expect" &&
+        has "$out/last.err" "bad3.expect:1: expected 'NAME VALUE TOLERANCE'" || return 1
+    : >"$out/bad4.expect"
+    runs 2 "$report" "$out/right.log" --out "$out/bad/report" --no-plot --expect "$out/bad4.expect" &&
+        has "$out/last.err" "bad4.expect: no expectations"
+}
+
+bad_capture() {
+    head -n 4 "$out/right.log" >"$out/bad.log"
+    echo "(1700000001.000000) vcan0 18FEF100#FF0G5AFFFFFFFFFF" >>"$out/bad.log"
+    runs 2 "$report" "$out/bad.log" --out "$out/bad/report" --no-plot &&
+        has "$out/last.err" "bad.log:5: bad hex digit 'G' in the data" || return 1
+    printf '\0\1\2' >"$out/binary.log"
+    runs 2 "$report" "$out/binary.log" --out "$out/bad/report" --no-plot &&
+        has "$out/last.err" "binary.log:1: NUL byte: not a text log"
+}
+
+not_measured() {
+    printf 'total_fuel_l 1.0 1%%\n' >"$out/total.expect"
+    runs 1 "$report" "$out/drive30.log" --out "$out/silent/report" \
+        --expect "$out/total.expect" --junit "$out/silent/junit.xml" &&
+        has "$out/last.out" "FAIL  total_fuel_l not measured (no HRLFC total from the module)" &&
+        has "$out/last.out" "plot:    none" &&
+        has "$out/silent/junit.xml" 'failures="1"'
+}
+
+check right_module right_module
+check other_phase other_phase
+check wrong_module wrong_module
+check input_gap input_gap
+check bad_expectations bad_expectations
+check bad_capture bad_capture
+check not_measured not_measured
+echo "run_report_test: $failed check(s) failed"
+exit "$failed"
