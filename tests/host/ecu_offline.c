@@ -116,6 +116,7 @@ int main(int argc, char **argv)
     const pfe_ecu_config_t cfg = {
         PFE_ECU_DEFAULT_ADDRESS, 0x80A0000000000001ULL | ((uint64_t)PFE_ECU_DEFAULT_ADDRESS << 1),
         10000U, &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag, 1U, 0U, 10000U,
+        &pfe_default_cruise, PFE_ECU_DEFAULT_SET_SPEED_MM_S,
     };
     static pfe_ecu_t ecu;
     const uint64_t start_us = drive.recs[0].t_us - START_BEFORE_US;
