@@ -248,6 +248,7 @@ static void on_frame(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
             pfe_predict_cancel(&ecu->predict);
         } else if (r == PFE_PREVIEW_COMPLETE) {
             ecu->preview_new = true;
+            ecu->preview_serial++;
         } else {
             /* a data frame of a preview in progress */
         }
@@ -309,7 +310,7 @@ static void predict(pfe_ecu_t *ecu, uint64_t now_us)
                                       ? ecu->platoon_msg.set_speed_mm_s.value
                                       : ecu->cfg.default_set_speed_mm_s;
         const uint64_t travelled_mm = ecu->preview_travelled_um / 1000U;
-        (void)pfe_predict_start(&ecu->predict, &ecu->preview_buf,
+        (void)pfe_predict_start(&ecu->predict, &ecu->preview_buf, ecu->preview_serial,
                                 (travelled_mm > UINT32_MAX) ? UINT32_MAX : (uint32_t)travelled_mm,
                                 &ecu->platoon, ecu->cfg.drag, ecu->cfg.cruise,
                                 pfe_clamp_i32(set_speed, PFE_SIM_STALL_MM_S, PFE_SPEED_MAX_MM_S),

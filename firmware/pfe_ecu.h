@@ -127,6 +127,7 @@ typedef struct {
     pfe_predict_t predict;
     uint64_t preview_travelled_um;     /* since the preview's header */
     bool preview_new;                  /* completed since the last prediction started */
+    uint32_t preview_serial;           /* counts completed previews */
     uint64_t predict_start_us;
     uint64_t predict_result_us;        /* when the last prediction was published */
     uint32_t predict_generation;

@@ -75,7 +75,8 @@ static int64_t air_unreduced_q32(const pfe_vehicle_t *v)
     return (int64_t)pfe_udiv_round_u64((uint64_t)v->air_q32 * 10000U, keep_bp);
 }
 
-int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t travelled_mm,
+int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t preview_serial,
+                      uint32_t travelled_mm,
                       const pfe_platoon_t *platoon, const pfe_drag_table_t *drag,
                       const pfe_cruise_calib_t *cruise, int32_t set_speed_mm_s,
                       int32_t start_speed_mm_s)
@@ -107,8 +108,7 @@ int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t travel
      * starts at the stall speed (the prediction then slightly short in time). */
     p->start_speed_mm_s = pfe_clamp_i32(start_speed_mm_s, PFE_SIM_STALL_MM_S, PFE_SPEED_MAX_MM_S);
     p->first_sample = first;
-    p->n_done = 0U;
-    p->road.grade_ppm = p->grade_ppm;
+    p->road.grade_ppm = &p->grade_ppm[first];
     p->road.n_samples = (uint32_t)pv->sample_count - first;
     p->road.spacing_mm = spacing_mm;
     p->sim_ready = false;
@@ -134,7 +134,20 @@ int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t travel
     const uint64_t window_mm = (uint64_t)(n - 1U) * platoon->gap_mm;
     const uint64_t w = (window_mm + spacing_mm - 1U) / spacing_mm;
     p->window_samples = (w > PFE_PREVIEW_MAX_SAMPLES) ? PFE_PREVIEW_MAX_SAMPLES : (uint32_t)w;
-    p->phase = PFE_PREDICT_LOADING;
+    p->n_done = 0U;
+    if (!p->prepared || (p->prepared_serial != preview_serial) ||
+        (p->n_samples != (uint32_t)pv->sample_count) || (p->spacing_mm != spacing_mm)) {
+        p->prepared = false;
+        p->prepared_serial = preview_serial;
+        p->n_samples = pv->sample_count;
+        p->spacing_mm = spacing_mm;
+        p->phase = PFE_PREDICT_LOADING;
+    } else if (p->prepared_window != p->window_samples) {
+        p->prepared = false; /* another platoon length: only the windows change */
+        p->phase = PFE_PREDICT_WINDOW_LOW;
+    } else {
+        p->phase = PFE_PREDICT_NOMINAL;
+    }
     return PFE_OK;
 }
 
@@ -159,7 +172,8 @@ static int start_run(pfe_predict_t *p)
     if (bound) {
         /* The upper bound's drag is the slow platoon's, at the fast run's
          * speed; the lower bound's the fast platoon's at the slow run's. */
-        p->sums.bound_grade_20ppm = p->window_20ppm;
+        p->sums.bound_grade_20ppm = upper ? &p->window_high_20ppm[p->first_sample]
+                                          : &p->window_low_20ppm[p->first_sample];
         p->sums.bound_air_q32 = upper ? p->air_slow_q32 : p->air_fast_q32;
         p->sums.bound_fuel_q20 = upper ? p->fuel_upper_q20 : p->fuel_lower_q20;
     }
@@ -167,48 +181,72 @@ static int start_run(pfe_predict_t *p)
     return rc;
 }
 
-/* True when s beats g as the window's extreme; ties go to the later sample,
- * which stays in the window longer. */
+/* True when s beats g as the window's extreme (ties too: the later sample
+ * stays in the window longer). */
 static bool beats(int32_t s, int32_t g, bool upper)
 {
     return upper ? (s >= g) : (s <= g);
 }
 
-/* Window extremes for samples n_done .. n_done + count - 1: largest
- * (upper) or smallest grade within window_samples on either side. A
- * sliding window: the extreme is kept from one sample to the next and the
- * window rescanned only when it leaves. Returns the samples compared. */
+/* Window extremes for the preview's samples n_done .. n_done + count - 1:
+ * largest (upper) or smallest grade within window_samples on either side. A
+ * monotonic queue of candidates (each sample enters and leaves it once):
+ * its front is the window's extreme. Windows wider than the queue are
+ * scanned sample by sample. Returns the samples compared. */
 static uint32_t window_extremes(pfe_predict_t *p, bool upper, uint32_t count)
 {
     const int32_t *grade = p->grade_ppm;
-    int16_t *out = p->window_20ppm;
-    const uint32_t n = p->road.n_samples;
+    int16_t *out = upper ? p->window_high_20ppm : p->window_low_20ppm;
+    const uint32_t n = p->n_samples;
     const uint32_t w = p->window_samples;
     const uint32_t end = ((p->n_done + count) < n) ? (p->n_done + count) : n;
-    int32_t value = p->win_value;
-    uint32_t index = p->win_index, last = p->win_last, compared = 0U;
-    for (uint32_t k = p->n_done; k < end; k++) {
-        const uint32_t lo = (k > w) ? (k - w) : 0U;
-        const uint32_t hi = ((k + w) < n) ? (k + w) : (n - 1U);
-        if ((k == 0U) || (index < lo)) {
-            value = grade[lo];
-            index = lo;
-            last = lo;
-        }
-        for (uint32_t j = last + 1U; j <= hi; j++) {
-            if (beats(grade[j], value, upper)) {
-                value = grade[j];
-                index = j;
+    uint32_t compared = 0U;
+    if (((2U * w) + 1U) >= PFE_PREDICT_WINDOW_QUEUE) {
+        for (uint32_t k = p->n_done; k < end; k++) {
+            const uint32_t lo = (k > w) ? (k - w) : 0U;
+            const uint32_t hi = ((k + w) < n) ? (k + w) : (n - 1U);
+            int32_t g = grade[lo];
+            for (uint32_t j = lo + 1U; j <= hi; j++) {
+                g = beats(grade[j], g, upper) ? grade[j] : g;
             }
+            compared += hi - lo + 1U;
+            /* Preview grades are multiples of 20 ppm within +-PFE_GRADE_MAX_PPM. */
+            out[k] = (int16_t)(g / 20);
+        }
+        p->n_done = end;
+        return compared;
+    }
+    if (p->n_done == 0U) {
+        p->win_head = 0U;
+        p->win_count = 0U;
+        p->win_next = 0U;
+    }
+    uint32_t head = p->win_head, cnt = p->win_count, next = p->win_next;
+    for (uint32_t k = p->n_done; k < end; k++) {
+        const uint32_t hi = ((k + w) < n) ? (k + w) : (n - 1U);
+        for (; next <= hi; next++) {
+            /* Candidates the new sample beats can never be the extreme again. */
+            while ((cnt > 0U) &&
+                   beats(grade[next],
+                         grade[p->win_queue[(head + cnt - 1U) % PFE_PREDICT_WINDOW_QUEUE]], upper)) {
+                cnt--;
+                compared++;
+            }
+            p->win_queue[(head + cnt) % PFE_PREDICT_WINDOW_QUEUE] = (uint16_t)next;
+            cnt++;
             compared++;
         }
-        last = (hi > last) ? hi : last;
+        const uint32_t lo = (k > w) ? (k - w) : 0U;
+        while (p->win_queue[head] < lo) {
+            head = (head + 1U) % PFE_PREDICT_WINDOW_QUEUE;
+            cnt--;
+        }
         /* Preview grades are multiples of 20 ppm within +-PFE_GRADE_MAX_PPM. */
-        out[k] = (int16_t)(value / 20);
+        out[k] = (int16_t)(grade[p->win_queue[head]] / 20);
     }
-    p->win_value = value;
-    p->win_index = index;
-    p->win_last = last;
+    p->win_head = head;
+    p->win_count = cnt;
+    p->win_next = next;
     p->n_done = end;
     return compared;
 }
@@ -294,15 +332,13 @@ pfe_predict_phase_t pfe_predict_run(pfe_predict_t *p, const pfe_preview_t *pv, u
     while ((cost < budget) && (p->phase != PFE_PREDICT_IDLE) && (p->phase != PFE_PREDICT_DONE)) {
         const uint32_t left = budget - cost;
         if (p->phase == PFE_PREDICT_LOADING) {
-            if ((pv->phase != PFE_PREVIEW_READY) ||
-                ((uint32_t)pv->sample_count != (p->first_sample + p->road.n_samples))) {
+            if ((pv->phase != PFE_PREVIEW_READY) || ((uint32_t)pv->sample_count != p->n_samples)) {
                 abandon(p, PFE_PREDICT_ENOPREVIEW); /* the preview changed under us */
                 break;
             }
             uint32_t want = left * PFE_PREDICT_LOAD_PER_UNIT;
-            want = (want < (p->road.n_samples - p->n_done)) ? want : (p->road.n_samples - p->n_done);
-            const uint32_t got = pfe_preview_copy_ppm(pv, p->first_sample + p->n_done, want,
-                                                      &p->grade_ppm[p->n_done]);
+            want = (want < (p->n_samples - p->n_done)) ? want : (p->n_samples - p->n_done);
+            const uint32_t got = pfe_preview_copy_ppm(pv, p->n_done, want, &p->grade_ppm[p->n_done]);
             if (got != want) {
                 abandon(p, PFE_PREDICT_ENOPREVIEW);
                 break;
@@ -312,22 +348,25 @@ pfe_predict_phase_t pfe_predict_run(pfe_predict_t *p, const pfe_preview_t *pv, u
             }
             p->n_done += got;
             cost += (got + PFE_PREDICT_LOAD_PER_UNIT - 1U) / PFE_PREDICT_LOAD_PER_UNIT;
-            if (p->n_done == p->road.n_samples) {
+            if (p->n_done == p->n_samples) {
                 p->n_done = 0U;
-                p->phase = PFE_PREDICT_NOMINAL;
+                p->phase = PFE_PREDICT_WINDOW_LOW;
             }
         } else if ((p->phase == PFE_PREDICT_WINDOW_LOW) || (p->phase == PFE_PREDICT_WINDOW_HIGH)) {
             const bool upper = p->phase == PFE_PREDICT_WINDOW_HIGH;
             /* A unit: PFE_PREDICT_WINDOW_PER_UNIT samples, plus one per
-             * PFE_PREDICT_WINDOW_PER_UNIT * 4 comparisons of a rescan. */
-            const uint32_t before = p->n_done;
-            const uint32_t compared = window_extremes(p, upper, left * PFE_PREDICT_WINDOW_PER_UNIT);
-            const uint32_t samples = p->n_done - before;
-            cost += ((samples + PFE_PREDICT_WINDOW_PER_UNIT - 1U) / PFE_PREDICT_WINDOW_PER_UNIT) +
-                    (compared / (PFE_PREDICT_WINDOW_PER_UNIT * 4U));
-            if (p->n_done == p->road.n_samples) {
+             * PFE_PREDICT_WINDOW_PER_UNIT * 4 comparisons of rescans. */
+            const uint32_t compared = window_extremes(p, upper, PFE_PREDICT_WINDOW_PER_UNIT);
+            cost += 1U + (compared / (PFE_PREDICT_WINDOW_PER_UNIT * 4U));
+            if (p->n_done == p->n_samples) {
                 p->n_done = 0U;
-                p->phase = upper ? PFE_PREDICT_FAST : PFE_PREDICT_SLOW;
+                if (upper) {
+                    p->prepared = true;
+                    p->prepared_window = p->window_samples;
+                    p->phase = PFE_PREDICT_NOMINAL;
+                } else {
+                    p->phase = PFE_PREDICT_WINDOW_HIGH;
+                }
             }
         } else if (!p->sim_ready) {
             /* Setting up a run reads every sample once and divides: it takes
@@ -341,9 +380,9 @@ pfe_predict_phase_t pfe_predict_run(pfe_predict_t *p, const pfe_preview_t *pv, u
             }
             break;
         } else if (p->phase == PFE_PREDICT_NOMINAL) {
-            cost += run_steps(p, left, PFE_PREDICT_WINDOW_LOW);
+            cost += run_steps(p, left, PFE_PREDICT_SLOW);
         } else if (p->phase == PFE_PREDICT_SLOW) {
-            cost += run_steps(p, left, PFE_PREDICT_WINDOW_HIGH);
+            cost += run_steps(p, left, PFE_PREDICT_FAST);
         } else {
             cost += run_steps(p, left, PFE_PREDICT_DONE);
         }

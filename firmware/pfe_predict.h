@@ -18,20 +18,23 @@
  * once, a few 64-bit divisions) takes a call of its own.
  *
  * A prediction goes through
- *   LOADING   copy the preview's samples from the start point on
- *   NOMINAL   the object model with the platoon's own parameters
- *   WINDOW_LOW, SLOW    the smallest grade around each sample (5.10), then
- *             the slowest platoon (no drag reduction): v_min, lower bound
- *   WINDOW_HIGH, FAST   the largest grade around each sample, then the
- *             fastest platoon (drag reduction at half the gap): v_max,
- *             upper bound
- *   DONE      the result is published, the predictor idle
+ *   LOADING      copy the preview's samples          } once per preview
+ *   WINDOW_LOW   the smallest grade around each sample } (and platoon
+ *   WINDOW_HIGH  the largest grade around each sample  }  length, 5.10)
+ *   NOMINAL      the object model with the platoon's own parameters
+ *   SLOW         the slowest platoon (no drag reduction): v_min, lower bound
+ *   FAST         the fastest platoon (drag reduction at half the gap):
+ *                v_max, upper bound
+ *   DONE         the result is published, the predictor idle
+ * The first three prepare the preview: a later prediction over the same
+ * preview (the caller says so with its serial number) starts at NOMINAL,
+ * from the sample the vehicle has reached.
  * pfe_predict_start() abandons a prediction in progress and starts anew
  * (a new preview, a new platoon): nothing of the old one survives.
  *
- * Memory: all in pfe_predict_t (about 8.4 KB: the preview's grade, 4 KB, its
- * window extremes at the preview's own 20 ppm resolution, 2 KB, and one
- * platoon).
+ * Memory: all in pfe_predict_t (about 10.5 KB: the preview's grade, 4 KB,
+ * its window extremes at the preview's own 20 ppm resolution, 2 x 2 KB, and
+ * one platoon).
  * Units: fuel nL internally, uL in the result; time ms; speed mm/s.
  */
 #ifndef PFE_PREDICT_H
@@ -45,17 +48,18 @@
 #include "pfe_platoon.h"
 #include "pfe_sim.h"
 
-#define PFE_PREDICT_LOAD_PER_UNIT 16U  /* preview samples copied per work unit */
+#define PFE_PREDICT_LOAD_PER_UNIT 8U   /* preview samples copied per work unit */
 #define PFE_PREDICT_WINDOW_PER_UNIT 6U  /* grade window samples per work unit */
 #define PFE_PREDICT_STEP_MAX_MM 16000U  /* simulation step: the preview's spacing, at most this */
+#define PFE_PREDICT_WINDOW_QUEUE 64U    /* sliding window queue: windows of up to 63 samples */
 
 typedef enum {
     PFE_PREDICT_IDLE = 0,
     PFE_PREDICT_LOADING,
-    PFE_PREDICT_NOMINAL,
     PFE_PREDICT_WINDOW_LOW,
-    PFE_PREDICT_SLOW,
     PFE_PREDICT_WINDOW_HIGH,
+    PFE_PREDICT_NOMINAL,
+    PFE_PREDICT_SLOW,
     PFE_PREDICT_FAST,
     PFE_PREDICT_DONE,
 } pfe_predict_phase_t;
@@ -91,12 +95,20 @@ typedef struct {
     int32_t set_speed_mm_s;
     int32_t start_speed_mm_s;
     uint32_t first_sample;             /* preview sample under the vehicle at the start */
+    /* the prepared preview */
+    bool prepared;
+    uint32_t prepared_serial;          /* the caller's number of the preview prepared */
+    uint32_t prepared_window;          /* window_samples the extremes were made for */
+    uint32_t n_samples;                /* samples of the preview */
+    uint32_t spacing_mm;
     uint32_t n_done;                   /* samples loaded, or window extremes computed */
-    int32_t win_value;                 /* sliding window: its extreme, where, its last sample */
-    uint32_t win_index;
-    uint32_t win_last;
+    uint16_t win_queue[PFE_PREDICT_WINDOW_QUEUE]; /* sliding window: candidates' samples */
+    uint32_t win_head;
+    uint32_t win_count;
+    uint32_t win_next;                 /* the next sample to enter the window */
     int32_t grade_ppm[PFE_PREVIEW_MAX_SAMPLES];
-    int16_t window_20ppm[PFE_PREVIEW_MAX_SAMPLES]; /* extreme grade around each sample, 20 ppm */
+    int16_t window_low_20ppm[PFE_PREVIEW_MAX_SAMPLES];  /* extreme grade around each sample, */
+    int16_t window_high_20ppm[PFE_PREVIEW_MAX_SAMPLES]; /* 20 ppm */
     pfe_road_t road;
     pfe_sim_t sim;
     pfe_sim_sums_t sums;
@@ -115,7 +127,9 @@ typedef struct {
 void pfe_predict_init(pfe_predict_t *p);
 
 /*
- * Starts a prediction over preview pv (READY), the vehicle having travelled
+ * Starts a prediction over preview pv (READY), whose serial number the
+ * caller changes whenever a new preview completes (the same number: the
+ * preview prepared before, unchanged), the vehicle having travelled
  * travelled_mm since its header, at start_speed_mm_s, for the platoon (kept
  * by pointer until the prediction ends; its drag table drag gives the bounds'
  * drag reduction at half the gap), the cruise calibration and set speed.
@@ -124,7 +138,8 @@ void pfe_predict_init(pfe_predict_t *p);
  * mislead). Cost: O(N) with N 64-bit divisions (the bound platoons' air
  * drag), about 2000 instructions for N = 5.
  */
-int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t travelled_mm,
+int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t preview_serial,
+                      uint32_t travelled_mm,
                       const pfe_platoon_t *platoon, const pfe_drag_table_t *drag,
                       const pfe_cruise_calib_t *cruise, int32_t set_speed_mm_s,
                       int32_t start_speed_mm_s);

@@ -32,6 +32,7 @@
 static const char *g_roads;
 static pfe_preview_t g_pv;
 static pfe_predict_t g_pred;
+static uint32_t g_serial; /* counts previews sent, as the ECU does */
 
 /* Sends road (spacing a whole number of metres) as one preview, frame by frame. */
 static void send_preview(const int32_t *grade_ppm, uint32_t n, uint32_t spacing_m, uint8_t id)
@@ -61,6 +62,7 @@ static void send_preview(const int32_t *grade_ppm, uint32_t n, uint32_t spacing_
         assert_true(pfe_preview_push(&g_pv, &f) >= 0);
     }
     assert_int_equal(g_pv.phase, PFE_PREVIEW_READY);
+    g_serial++;
 }
 
 static void make_platoon(pfe_platoon_t *pl, pfe_platoon_config_t *cfg, uint32_t n)
@@ -135,7 +137,7 @@ static void check_road(const char *name, uint32_t n_vehicles, uint32_t travelled
     pfe_platoon_config_t cfg;
     make_platoon(&pl, &cfg, n_vehicles);
     pfe_predict_init(&g_pred);
-    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, travelled_m * 1000U, &pl, &pfe_default_drag,
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, travelled_m * 1000U, &pl, &pfe_default_drag,
                                        &pfe_default_cruise, 25000, 25000),
                      PFE_OK);
     const uint32_t slices = run_to_end();
@@ -186,6 +188,52 @@ static void test_hilly_from_halfway(void **state)
  * resistance over 12000 m is 61.99 MJ, 4 kW of auxiliaries over 480 s 1.92
  * MJ; (61.99 + 1.92) MJ / (0.40 * 35800 J/mL) = 4.463 L. With one truck and
  * no grade the bounds' runs equal the nominal one: lower == upper. */
+/* A second prediction over the same preview starts from the prepared one
+ * (no copy, no windows) and gives exactly what a fresh preparation gives. */
+static void test_prepared_preview_is_reused(void **state)
+{
+    (void)state;
+    road_ppm_t road;
+    load_road("hilly", &road);
+    pfe_preview_init(&g_pv);
+    send_preview(road.grade_ppm, road.n_samples, road.spacing_mm / 1000U, 4U);
+    pfe_platoon_t pl;
+    pfe_platoon_config_t cfg;
+    make_platoon(&pl, &cfg, 5U);
+    pfe_predict_init(&g_pred);
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_OK);
+    assert_int_equal(g_pred.phase, PFE_PREDICT_LOADING);
+    (void)run_to_end();
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 3000000U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 24000),
+                     PFE_OK);
+    assert_int_equal(g_pred.phase, PFE_PREDICT_NOMINAL);
+    const uint32_t slices_again = run_to_end();
+    const pfe_predict_result_t again = *pfe_predict_result(&g_pred);
+    /* The same preview under a new serial number: prepared anew. */
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial + 100U, 3000000U, &pl,
+                                       &pfe_default_drag, &pfe_default_cruise, 25000, 24000),
+                     PFE_OK);
+    assert_int_equal(g_pred.phase, PFE_PREDICT_LOADING);
+    const uint32_t slices_fresh = run_to_end();
+    const pfe_predict_result_t *fresh = pfe_predict_result(&g_pred);
+    assert_true(slices_again < slices_fresh);
+    assert_int_equal(again.fuel_ul, fresh->fuel_ul);
+    assert_int_equal(again.fuel_lower_ul, fresh->fuel_lower_ul);
+    assert_int_equal(again.fuel_upper_ul, fresh->fuel_upper_ul);
+    assert_int_equal(again.time_ms, fresh->time_ms);
+    assert_int_equal(again.distance_m, 9000U);
+    /* Another platoon length: only the windows are made again. */
+    make_platoon(&pl, &cfg, 8U);
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial + 100U, 0U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_OK);
+    assert_int_equal(g_pred.phase, PFE_PREDICT_WINDOW_LOW);
+    road_ppm_free(&road);
+}
+
 static void test_flat_one_truck_literals(void **state)
 {
     (void)state;
@@ -197,7 +245,7 @@ static void test_flat_one_truck_literals(void **state)
     pfe_platoon_config_t cfg;
     make_platoon(&pl, &cfg, 1U);
     pfe_predict_init(&g_pred);
-    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 0U, &pl, &pfe_default_drag,
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl, &pfe_default_drag,
                                        &pfe_default_cruise, 25000, 25000),
                      PFE_OK);
     (void)run_to_end();
@@ -219,7 +267,7 @@ static void test_refusals_and_restart(void **state)
     pfe_preview_init(&g_pv);
     pfe_predict_init(&g_pred);
     /* No preview yet. */
-    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 0U, &pl, &pfe_default_drag,
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl, &pfe_default_drag,
                                        &pfe_default_cruise, 25000, 25000),
                      PFE_PREDICT_ENOPREVIEW);
     static int32_t grade[300];
@@ -228,12 +276,12 @@ static void test_refusals_and_restart(void **state)
     }
     send_preview(grade, 300U, 10U, 1U);
     /* Past its 3000 m. */
-    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 3000000U, &pl, &pfe_default_drag,
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 3000000U, &pl, &pfe_default_drag,
                                        &pfe_default_cruise, 25000, 25000),
                      PFE_PREDICT_EPASSED);
     assert_false(pfe_predict_result(&g_pred)->valid);
     /* Start, then a new preview arrives mid-way: the old one is abandoned. */
-    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 0U, &pl, &pfe_default_drag,
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl, &pfe_default_drag,
                                        &pfe_default_cruise, 25000, 25000),
                      PFE_OK);
     (void)pfe_predict_run(&g_pred, &g_pv, 5U);
@@ -243,7 +291,7 @@ static void test_refusals_and_restart(void **state)
     assert_int_equal(g_pred.last_error, PFE_PREDICT_ENOPREVIEW);
     assert_false(pfe_predict_result(&g_pred)->valid);
     /* Restarted on the new preview, it completes: 1500 m. */
-    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 0U, &pl, &pfe_default_drag,
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl, &pfe_default_drag,
                                        &pfe_default_cruise, 25000, 25000),
                      PFE_OK);
     (void)run_to_end();
@@ -255,7 +303,7 @@ static void test_refusals_and_restart(void **state)
         grade[k] = 300000;
     }
     send_preview(grade, 300U, 10U, 3U);
-    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, 0U, &pl, &pfe_default_drag,
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl, &pfe_default_drag,
                                        &pfe_default_cruise, 25000, 25000),
                      PFE_OK);
     (void)run_to_end();
@@ -276,6 +324,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_uphill_n5_within_one_percent),
         cmocka_unit_test(test_hilly_n5_within_one_percent),
         cmocka_unit_test(test_hilly_from_halfway),
+        cmocka_unit_test(test_prepared_preview_is_reused),
         cmocka_unit_test(test_refusals_and_restart),
     };
     return cmocka_run_group_tests_name("predict", tests, NULL, NULL);
