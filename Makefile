@@ -49,7 +49,7 @@ deps: $(DEPS_STAMP)
 
 # ---------------------------------------------------------------- host tools
 
-TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu
+TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu $(HOST)/pfe_replay $(HOST)/pfe_decode
 tools: $(TOOLS)
 
 $(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
@@ -123,6 +123,7 @@ include mk/m4.mk
 # Optimised for instruction count, across files: the model's small helpers
 # (clamps, saturating adds) live in their own files and must inline.
 include mk/vcan.mk
+include mk/replay.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
@@ -204,7 +205,7 @@ e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check drive.log ecu_vcan.sh)
 	$(VCAN_VM) --time --timeout 400 --payload $(abspath $(E2E_PAYLOAD)) -- \
 	    sh $(abspath $(E2E_PAYLOAD))/ecu_vcan.sh
 
-test: test-host test-m4 check-selfcheck check-image m4-selftest vcan-test e2e-test
+test: test-host test-m4 check-selfcheck check-image m4-selftest vcan-test e2e-test replay-test replay-vcan-test
 
 # ---------------------------------------------------------------- benchmarks
 
@@ -212,7 +213,7 @@ $(HOST)/host_bench: tests/bench/host_bench.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SI
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ $< $(FW_SRC) $(REF_SRC) -lm
 
-bench: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF)
+bench: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF) replay-bench
 	@$(M4_RUN) $(M4_OUT)/pfe_bench.elf
 	@$(M4_CHECK) --bench pfe_mps2 $(FIRMWARE_ELF)
 	@echo "bench: pfe_mps2_heap $$($(M4_SIZE) -A $(FIRMWARE_ELF) | \
