@@ -54,6 +54,10 @@
  *   --tx-wait-ms MS   how long one frame may wait for room when the kernel's
  *                     transmit queue is full (ENOBUFS, EAGAIN) before it is
  *                     dropped and counted; default 100
+ *   --spin-us US      sleep until US microseconds before each deadline, then
+ *                     busy-wait for it: lateness of a few microseconds where
+ *                     the kernel wakes sleepers late (virtual machines), for
+ *                     a CPU kept busy up to US per frame; default 0 (sleep)
  *   --allow-real-bus  allow sending on CAN interfaces that are not virtual
  *   --quiet           no progress line
  *
@@ -153,6 +157,7 @@ typedef struct {
     bool skip_errors;
     bool skip_unknown;
     int64_t tx_wait_ns;
+    int64_t spin_ns;
     bool allow_real_bus;
     bool quiet;
     target_t targets[MAX_TARGETS];
@@ -199,7 +204,7 @@ static void usage(FILE *f)
             "usage: pfe_replay [-I FILE] [-l N|i] [-t] [-g MS] [-s S] [-n COUNT] [-x] [-v]\n"
             "                  [--speed F] [--start S] [--end S] [--filter ID[:MASK]]...\n"
             "                  [--pgn PGN]... [--dry-run] [--format auto|log|printed|printed-delta|asc]\n"
-            "                  [--skip-errors] [--skip-unknown] [--tx-wait-ms MS]\n"
+            "                  [--skip-errors] [--skip-unknown] [--tx-wait-ms MS] [--spin-us US]\n"
             "                  [--allow-real-bus] [--quiet] [TX=LOG | stdout=LOG]...\n"
             "Replays a candump log, candump output or Vector ASC file onto SocketCAN,\n"
             "virtual CAN only unless --allow-real-bus. See the header of sim_host/pfe_replay.c.\n");
@@ -549,16 +554,22 @@ static int send_frame(replay_t *rp, const target_t *t, const canlog_frame_t *f)
     }
 }
 
-/* Sleeps until DEADLINE_NS (CLOCK_MONOTONIC), or a signal stops the run. */
-static void sleep_until(int64_t deadline_ns)
+/* Sleeps until DEADLINE_NS (CLOCK_MONOTONIC), the last SPIN_NS of it
+ * busy-waiting, or until a signal stops the run. */
+static void sleep_until(int64_t deadline_ns, int64_t spin_ns)
 {
+    const int64_t wake_ns = deadline_ns - spin_ns;
     struct timespec ts;
-    ts.tv_sec = (time_t)(deadline_ns / 1000000000LL);
-    ts.tv_nsec = (long)(deadline_ns % 1000000000LL);
+    ts.tv_sec = (time_t)(wake_ns / 1000000000LL);
+    ts.tv_nsec = (long)(wake_ns % 1000000000LL);
     while (!g_stop) {
         const int rc = clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
         if (rc != EINTR) {
             break;
+        }
+    }
+    if (spin_ns > 0) {
+        while (!g_stop && (now_ns() < deadline_ns)) {
         }
     }
 }
@@ -652,7 +663,7 @@ static int run_pass(replay_t *rp, canlog_reader_t *r)
                 if (rp->out_len > 0U) {
                     out_flush(rp);
                 }
-                sleep_until(deadline);
+                sleep_until(deadline, rp->spin_ns);
                 if (g_stop) {
                     return PASS_STOP;
                 }
@@ -768,7 +779,8 @@ static bool takes_value(const char *opt)
 {
     static const char *const names[] = {"-I",      "-l",       "-g",    "-s",
                                         "-n",      "--speed",  "--start", "--end",
-                                        "--filter", "--pgn",   "--format", "--tx-wait-ms"};
+                                        "--filter", "--pgn",   "--format", "--tx-wait-ms",
+                                        "--spin-us"};
     for (size_t i = 0U; i < sizeof names / sizeof names[0]; i++) {
         if (strcmp(opt, names[i]) == 0) {
             return true;
@@ -885,6 +897,12 @@ static int parse_args(replay_t *rp, int argc, char **argv)
                         v);
                 return -1;
             }
+        } else if (strcmp(a, "--spin-us") == 0) {
+            if ((parse_nonneg(v, &d) != 0) || (d > 1000000.0)) {
+                fprintf(stderr, "pfe_replay: --spin-us %s: microseconds, 0 to 1000000\n", v);
+                return -1;
+            }
+            rp->spin_ns = (int64_t)(d * 1e3);
         } else if (strcmp(a, "--tx-wait-ms") == 0) {
             if ((parse_nonneg(v, &d) != 0) || (d > 60000.0)) {
                 fprintf(stderr, "pfe_replay: --tx-wait-ms %s: milliseconds, 0 to 60000\n", v);
