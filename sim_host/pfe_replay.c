@@ -86,6 +86,7 @@
  *   2  refused: an interface that is not virtual CAN, without --allow-real-bus
  *   3  usage error
  *   4  done, but frames were dropped (transmit queue full beyond --tx-wait-ms)
+ *   130  stopped by SIGINT or SIGTERM (the summary is printed)
  */
 #define _GNU_SOURCE /* clock_nanosleep, sigaction */
 
@@ -117,6 +118,7 @@
 #define EXIT_REFUSED 2
 #define EXIT_USAGE 3
 #define EXIT_DROPPED 4
+#define EXIT_STOPPED 130
 
 #define MAX_TARGETS 32U
 #define MAX_FILTERS 32U
@@ -608,9 +610,11 @@ static int run_pass(replay_t *rp, canlog_reader_t *r)
             log_anchor_us = f.time_us + (uint64_t)rp->start_us;
             prev_t = f.time_us;
         }
-        /* gaps are judged between consecutive frames of the log */
-        if ((rp->skip_gap_us > 0) && ((int64_t)(f.time_us - prev_t) > rp->skip_gap_us)) {
-            cut_us += (int64_t)(f.time_us - prev_t);
+        /* Gaps are judged between consecutive frames of the log; only the
+         * part after the start point is cut (the schedule begins there). */
+        if ((rp->skip_gap_us > 0) && ((int64_t)(f.time_us - prev_t) > rp->skip_gap_us) &&
+            (f.time_us > log_anchor_us)) {
+            cut_us += (int64_t)(f.time_us - ((prev_t > log_anchor_us) ? prev_t : log_anchor_us));
         }
         prev_t = f.time_us;
         if (f.time_us < log_anchor_us) {
@@ -1025,6 +1029,9 @@ int main(int argc, char **argv)
     }
     if ((status == 0) && (rp.dropped > 0U)) {
         status = EXIT_DROPPED;
+    }
+    if ((status == 0) && g_stop) {
+        status = EXIT_STOPPED;
     }
     return status;
 }

@@ -129,6 +129,25 @@ t_end=$(date +%s%N)
 ms=$(((t_end - t_start) / 1000000))
 [ "$ms" -ge 100 ] && [ "$ms" -lt 3000 ] && [ "$(wc -l <"$tmp/gap_out.log")" -eq 3 ] &&
     ok "-s 1 cuts a 100 s pause ($ms ms)" || bad "-s 1: $ms ms"
+# -s with --start: a pause before the start point does not shift the rest,
+# which keeps its 1 s spacing
+printf '%s\n' '(1700000000.000000) vcan0 123#01' '(1700000100.000000) vcan0 123#02' \
+    '(1700000101.000000) vcan0 123#03' '(1700000102.000000) vcan0 123#04' >"$tmp/gap2.log"
+t_start=$(date +%s%N)
+"$rp" --dry-run -s 5 --start 50 -I "$tmp/gap2.log" >"$tmp/gap2_out.log" 2>/dev/null
+t_end=$(date +%s%N)
+ms=$(((t_end - t_start) / 1000000))
+[ "$ms" -ge 1950 ] && [ "$ms" -lt 4000 ] && [ "$(wc -l <"$tmp/gap2_out.log")" -eq 3 ] &&
+    ok "-s 5 --start 50: the pause cut, 1 s steps kept ($ms ms)" || bad "-s 5 --start 50: $ms ms"
+# SIGTERM: the summary, exit 130
+"$rp" --dry-run -I "$drive" >/dev/null 2>"$tmp/term.txt" &
+pid=$!
+sleep 0.5
+kill -TERM "$pid"
+wait "$pid"
+rc=$?
+[ "$rc" -eq 130 ] && grep -q "written to stdout" "$tmp/term.txt" && ok "SIGTERM: summary, exit 130" ||
+    bad "SIGTERM: exit $rc"
 # -n: a count of frames
 "$rp" --dry-run -t -n 5 -I "$drive" >"$tmp/n.log" 2>/dev/null
 [ "$(wc -l <"$tmp/n.log")" -eq 5 ] && ok "-n 5" || bad "-n 5"
