@@ -76,7 +76,14 @@ $(HOSTSAN)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) sim_host/dbc.c | $(DEPS_STAMP
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -o $@ $(DECODE_SRC) sim_host/dbc.c -lm
 
-replay-test: $(HOSTSAN)/test_canlog $(HOSTSAN)/pfe_replay $(HOSTSAN)/pfe_decode $(REPLAY_DRIVE_LOG)
+# can-utils' log2asc writes the ASC that test_replay.sh reads back.
+$(REPLAY_OUT)/.deps-ok: scripts/deps.sh
+	@mkdir -p $(@D)
+	sh scripts/deps.sh can-utils
+	@touch $@
+
+replay-test: $(HOSTSAN)/test_canlog $(HOSTSAN)/pfe_replay $(HOSTSAN)/pfe_decode $(REPLAY_DRIVE_LOG) \
+        $(REPLAY_OUT)/.deps-ok
 	@echo "== host: test_canlog"; $(HOSTSAN)/test_canlog $(REPLAY_DRIVE_LOG)
 	@echo "== host: test_decode.sh"; sh tests/host/test_decode.sh $(HOSTSAN)/pfe_decode can_dbc/pfe.dbc
 	@echo "== host: test_replay.sh"; sh tests/host/test_replay.sh $(HOSTSAN)/pfe_replay $(REPLAY_DRIVE_LOG)

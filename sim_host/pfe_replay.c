@@ -8,7 +8,7 @@
  * detected from its first lines (sim_host/canlog.h says exactly what each
  * format may hold).
  *
- * canplayer's options (same letters, same meaning):
+ * canplayer's options (same letters and meaning, -g as said below):
  *   -I FILE     the log; default, or "-": standard input
  *   -l N | -l i play the log N times, or endlessly; not with standard input
  *   -t          ignore timestamps: frames go one after another, -g apart
@@ -26,7 +26,8 @@
  *   -h          this help
  * TX=LOG assignments: frames logged on interface LOG are sent on TX
  * (vcan0=can0: a log of can0 onto vcan0); TX "stdout" writes them to
- * standard output as candump log lines, unchanged (canplayer's extra hook).
+ * standard output as candump log lines with LOG as interface (canplayer's
+ * extra hook; in canonical form: upper-case hex, no '.' between bytes).
  * With assignments, frames of interfaces not assigned are skipped; without,
  * each frame goes to the interface it was logged on. An ASC file's channel N
  * is interface can<N-1>.
@@ -34,7 +35,7 @@
  * Options of this tool:
  *   --speed F         F times as fast as logged (0.5: half speed); default 1
  *   --start S         only frames from S seconds after the log's first frame
- *   --end S           ... up to E seconds after it (reading stops there)
+ *   --end S           ... up to S seconds after it (reading stops there)
  *   --filter ID[:MASK]  only frames whose id matches: (id & MASK) == (ID &
  *                     MASK), hex; an ID of more than 3 digits or over 7FF is
  *                     29-bit and matches 29-bit frames only. Repeatable.
@@ -70,8 +71,9 @@
  * T0 the CLOCK_MONOTONIC time the pass began; the replayer sleeps until then
  * (clock_nanosleep, TIMER_ABSTIME) and sends. Lateness is the
  * CLOCK_MONOTONIC time after the send returned minus the deadline, kept in a
- * fixed histogram (sim_host/lateness.h). Each pass of -l starts afresh.
- * A log without timestamps (candump output without -t) is sent as with -t.
+ * fixed histogram (sim_host/lateness.h); with -t and no -g there is no
+ * deadline and no lateness. Each pass of -l starts afresh. A log without
+ * timestamps (candump output without -t) is sent as with -t.
  *
  * At the end (also after Ctrl-C), a summary on standard error: frames sent,
  * written to standard output, skipped (filters, --start, unassigned or
@@ -80,7 +82,8 @@
  * progress line on standard error when that is a terminal.
  *
  * Exit status:
- *   0  done: every frame sent or written
+ *   0  done: every frame sent or written (lines skipped by --skip-errors
+ *      do not change it, unless no frame at all could be read: 1)
  *   1  input or system error: unreadable or empty log, a bad line (without
  *      --skip-errors), no such interface, a socket error
  *   2  refused: an interface that is not virtual CAN, without --allow-real-bus
