@@ -946,7 +946,9 @@ static int parse_printed_line(canlog_reader_t *r, const char *line, canlog_frame
         return fail(r, CANLOG_E_DLC, "length of %d digits", ld);
     }
     p = skip_blanks(p + 1);
-    f->fd = ld == 2;
+    /* Two digits mean CAN FD, except before "remote request": CAN FD has no
+     * remote frames, so that is a classic one written as [04]. */
+    f->fd = (ld == 2) && !token_is(p, "remote");
     if (!f->fd) {
         if (have_x && (f->fd_flags != 0U)) {
             return fail(r, CANLOG_E_SYNTAX, "FD flags on a classic frame");

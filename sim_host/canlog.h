@@ -22,7 +22,8 @@
  *                         (1700000000.010000)  vcan0  18FEF100   [8]  00 11 22 33 44 55 66 77
  *                         (2024-01-02 10:11:12.123456)  vcan0  123   [2]  0A 0B
  *                         (000.010000)  vcan0       123   [4]  remote request
- *                         vcan0  18FEF100  [12]  00 11 ... (two-digit length: CAN FD)
+ *                         vcan0  18FEF100  [12]  00 11 ... (two-digit length: CAN FD,
+ *                                                        except "[04]  remote request")
  *                       -x's "RX - -" / "TX B E" columns, -a's ASCII column
  *                       and -e's ERRORFRAME marker are accepted; the lines
  *                       -e adds after an error frame (they start with a tab)

@@ -280,9 +280,10 @@ static void test_printed_date_zero_none(void **state)
     n = read_text("  vcan0  123   [2]  41 42                     'AB'\n"
                   "  vcan1  RX B -  18FEF100  [12]  00 01 02 03 04 05 06 07 08 09 0A 0B\n"
                   "  vcan1  TX - E       123  [08]  FF FF FF FF FF FF FF FF\n"
-                  "  vcan0  RX - -       321   [1]  7F\n",
+                  "  vcan0  RX - -       321   [1]  7F\n"
+                  "  vcan0  123  [04]  remote request\n",
                   CANLOG_FMT_AUTO);
-    assert_int_equal(n, 4);
+    assert_int_equal(n, 5);
     assert_int_equal(canlog_format(&g_reader), CANLOG_FMT_PRINTED);
     assert_int_equal(canlog_time_base(&g_reader), CANLOG_TB_NONE);
     expect_frame(&g_frames[0], 0U, "vcan0", 0x123U, false, 0, 2, "4142");
@@ -292,6 +293,7 @@ static void test_printed_date_zero_none(void **state)
     expect_frame(&g_frames[2], 0U, "vcan1", 0x123U, true, CANLOG_FD_ESI, 8, "FFFFFFFFFFFFFFFF");
     assert_int_equal(g_frames[2].dir, 'T');
     expect_frame(&g_frames[3], 0U, "vcan0", 0x321U, false, 0, 1, "7F");
+    expect_frame(&g_frames[4], 0U, "vcan0", 0x40000123U, false, 0, 4, NULL);
 }
 
 /* ---- Vector ASC ---------------------------------------------------------- */
