@@ -1,0 +1,171 @@
+# Log replay and decoding: pfe_replay and pfe_decode (sim_host/), their tests
+# and their benchmark.
+#
+# Included from the top-level Makefile after mk/vcan.mk; uses its BUILD,
+# HOST, HOSTSAN, HOST_CC, HOST_CFLAGS, SAN_CFLAGS, WARN, DEPS_STAMP, its rule
+# for the e2e drive log and mk/vcan.mk's VCAN_VM, VCAN_VM_DIR.
+#
+# Targets:
+#   replay-test        host tests, ASan + UBSan: test_canlog (CMocka: every
+#                      format, every kind of bad input, the drive log in three
+#                      formats), then tests/host/test_decode.sh (pfe_decode)
+#                      and tests/host/test_replay.sh (pfe_replay: dry run,
+#                      filters, ASC from can-utils' log2asc, exit codes, the
+#                      real-bus guard on lo)
+#   replay-vcan-test   tests/e2e/replay_vcan.sh on vcan0 through
+#                      scripts/vcan_vm.sh: round trips of the bundled logs and
+#                      of candump logs of cangen, the drive as ASC and as
+#                      candump output, pacing against canplayer, the guard
+#                      on lo and on an slcan interface
+#   replay-bench       bench: log_parse_fps (this machine) and, in one VM run,
+#                      pfe_replay against canplayer (tests/bench/replay_bench.sh)
+#
+# Variables:
+#   REPLAY_OUT         outputs of this file ($(BUILD)/replay)
+#   REPLAY_BENCH_FRAMES  frames of the benchmark log (1000000)
+#   REPLAY_BENCH_RUNS  runs per program, the median is kept (5 here, 3 in the VM)
+
+REPLAY_OUT ?= $(BUILD)/replay
+# The e2e drive: the Makefile's rule for $$(E2E_PAYLOAD)/drive.log, whose
+# variable is defined after this file is included; named here by its path.
+REPLAY_DRIVE_LOG := $(BUILD)/e2e/payload/drive.log
+REPLAY_PAYLOAD := $(REPLAY_OUT)/payload
+REPLAY_BENCH_PAYLOAD := $(REPLAY_OUT)/bench-payload
+REPLAY_BENCH_FRAMES ?= 1000000
+REPLAY_BENCH_RUNS ?= 5
+REPLAY_VM_TIMEOUT_S ?= 600
+
+CANLOG_SRC := sim_host/canlog.c
+CANLOG_HDR := sim_host/canlog.h
+REPLAY_SRC := sim_host/pfe_replay.c $(CANLOG_SRC) sim_host/lateness.c hal/socketcan/hal_socketcan.c
+REPLAY_HDR := $(CANLOG_HDR) sim_host/lateness.h hal/socketcan/hal_socketcan.h hal/hal_can.h
+DECODE_SRC := sim_host/pfe_decode.c $(CANLOG_SRC)
+DECODE_HDR := $(CANLOG_HDR) sim_host/dbc.h
+
+.PHONY: replay-test replay-vcan-test replay-bench
+
+# ---------------------------------------------------------------- host tools
+
+$(HOST)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ $(REPLAY_SRC)
+
+# sim_host/dbc.c draws a false maybe-uninitialized warning at -O2 without the
+# sanitizers (expect_u32's v, written by parse_u64_token whenever it returns
+# 0): that one warning is off for this object.
+$(REPLAY_OUT)/obj/dbc.o: sim_host/dbc.c sim_host/dbc.h | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -Wno-maybe-uninitialized -c $< -o $@
+
+$(HOST)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) $(REPLAY_OUT)/obj/dbc.o | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -o $@ $(DECODE_SRC) $(REPLAY_OUT)/obj/dbc.o -lm
+
+# ---------------------------------------------------------------- host tests (ASan, UBSan)
+
+$(HOSTSAN)/test_canlog: tests/host/test_canlog.c $(CANLOG_SRC) sim_host/lateness.c $(CANLOG_HDR) \
+        sim_host/lateness.h | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -Isim_host -o $@ $< $(CANLOG_SRC) sim_host/lateness.c -lcmocka
+
+$(HOSTSAN)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(REPLAY_SRC)
+
+$(HOSTSAN)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) sim_host/dbc.c | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -I. -o $@ $(DECODE_SRC) sim_host/dbc.c -lm
+
+# can-utils' log2asc writes the ASC that test_replay.sh reads back.
+$(REPLAY_OUT)/.deps-ok: scripts/deps.sh
+	@mkdir -p $(@D)
+	sh scripts/deps.sh can-utils
+	@touch $@
+
+replay-test: $(HOSTSAN)/test_canlog $(HOSTSAN)/pfe_replay $(HOSTSAN)/pfe_decode $(REPLAY_DRIVE_LOG) \
+        $(REPLAY_OUT)/.deps-ok
+	@echo "== host: test_canlog"; $(HOSTSAN)/test_canlog $(REPLAY_DRIVE_LOG)
+	@echo "== host: test_decode.sh"; sh tests/host/test_decode.sh $(HOSTSAN)/pfe_decode can_dbc/pfe.dbc
+	@echo "== host: test_replay.sh"; sh tests/host/test_replay.sh $(HOSTSAN)/pfe_replay $(REPLAY_DRIVE_LOG)
+
+# ---------------------------------------------------------------- on vcan (scripts/vcan_vm.sh)
+
+# Static programs: the VM's initramfs has no C library.
+REPLAY_STATIC := $(WARN) -O2 -static -I. -Ifirmware
+REPLAY_LOGS := $(sort $(wildcard sim_host/logs/*.log))
+
+$(REPLAY_PAYLOAD)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(REPLAY_STATIC) -o $@ $(REPLAY_SRC)
+
+$(REPLAY_PAYLOAD)/lateness_check: tests/e2e/lateness_check.c $(CANLOG_SRC) sim_host/lateness.c \
+        $(CANLOG_HDR) sim_host/lateness.h | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(REPLAY_STATIC) -o $@ $< $(CANLOG_SRC) sim_host/lateness.c
+
+$(REPLAY_PAYLOAD)/slcan_run: tests/e2e/slcan_run.c | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(REPLAY_STATIC) -o $@ $<
+
+$(REPLAY_PAYLOAD)/replay_vcan.sh: tests/e2e/replay_vcan.sh
+	@mkdir -p $(@D)
+	cp $< $@
+
+$(REPLAY_PAYLOAD)/drive.log: $(REPLAY_DRIVE_LOG)
+	@mkdir -p $(@D)
+	cp $< $@
+
+# The committed logs, if any, in logs/ (rebuilt each time: a log may be removed).
+$(REPLAY_PAYLOAD)/logs/.copied: $(REPLAY_LOGS) mk/replay.mk
+	@rm -rf $(@D) && mkdir -p $(@D)
+	@for f in $(REPLAY_LOGS); do cp "$$f" $(@D)/ || exit 1; done
+	@echo "replay: $(words $(REPLAY_LOGS)) log(s) from sim_host/logs in the payload"
+	@touch $@
+
+REPLAY_PAYLOAD_FILES := $(addprefix $(REPLAY_PAYLOAD)/,pfe_replay lateness_check slcan_run \
+    replay_vcan.sh drive.log logs/.copied)
+
+replay-vcan-test: $(REPLAY_PAYLOAD_FILES)
+	VCAN_VM_DIR=$(VCAN_VM_DIR) $(VCAN_VM) --time --timeout $(REPLAY_VM_TIMEOUT_S) \
+	    --payload $(abspath $(REPLAY_PAYLOAD)) -- sh $(abspath $(REPLAY_PAYLOAD))/replay_vcan.sh
+
+# ---------------------------------------------------------------- benchmark
+
+$(HOST)/biglog_gen: tests/bench/biglog_gen.c | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -o $@ $<
+
+$(HOST)/bench_time: tests/bench/bench_time.c | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -o $@ $<
+
+$(REPLAY_OUT)/big.log: $(HOST)/biglog_gen
+	@mkdir -p $(@D)
+	$(HOST)/biglog_gen $(REPLAY_BENCH_FRAMES) > $@.tmp && mv $@.tmp $@
+
+$(REPLAY_BENCH_PAYLOAD)/%: tests/bench/%.c | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(REPLAY_STATIC) -o $@ $<
+
+$(REPLAY_BENCH_PAYLOAD)/pfe_replay: $(REPLAY_PAYLOAD)/pfe_replay
+	@mkdir -p $(@D)
+	cp $< $@
+
+$(REPLAY_BENCH_PAYLOAD)/replay_bench.sh: tests/bench/replay_bench.sh
+	@mkdir -p $(@D)
+	cp $< $@
+
+# canplayer cannot run on this machine (its kernel has no CAN sockets, and
+# canplayer opens one even for stdout=): the comparison runs both programs
+# in one VM, on a copy of the log generated there (checked by its md5sum).
+replay-bench: $(HOST)/pfe_replay $(HOST)/bench_time $(REPLAY_OUT)/big.log \
+        $(addprefix $(REPLAY_BENCH_PAYLOAD)/,pfe_replay biglog_gen bench_time replay_bench.sh)
+	@set -e; out=$$($(HOST)/bench_time $(REPLAY_BENCH_RUNS) $(HOST)/pfe_replay -t --quiet \
+	    -I $(REPLAY_OUT)/big.log stdout=vcan0 2>/dev/null); \
+	echo "replay-bench: pfe_replay -t -I big.log stdout=vcan0 > /dev/null, here: $$out"; \
+	med=$$(echo "$$out" | awk '{ print $$2 }'); \
+	awk -v n=$(REPLAY_BENCH_FRAMES) -v t="$$med" \
+	    'BEGIN { printf "bench: log_parse_fps %.0f frames/s\n", n / t }'
+	@VCAN_VM_DIR=$(VCAN_VM_DIR) $(VCAN_VM) --timeout $(REPLAY_VM_TIMEOUT_S) \
+	    --payload $(abspath $(REPLAY_BENCH_PAYLOAD)) -- sh $(abspath $(REPLAY_BENCH_PAYLOAD))/replay_bench.sh \
+	    $(REPLAY_BENCH_FRAMES) $$(md5sum < $(REPLAY_OUT)/big.log | cut -d' ' -f1)

@@ -1,0 +1,277 @@
+#!/bin/sh
+# pfe_replay on vcan: round trips, other formats, pacing against canplayer,
+# the real-bus guard. Runs from its payload folder on a machine with vcan0
+# and vcan1 up (scripts/vcan_vm.sh; `make replay-vcan-test`).
+#
+#   replay_vcan.sh
+#
+# The folder holds pfe_replay, lateness_check, slcan_run (static programs),
+# drive.log (the e2e drive, a candump log) and logs/ (the committed logs of
+# sim_host/logs, maybe none). can-utils (candump, canplayer, cangen,
+# log2asc) come with the VM.
+#
+# Checks, each printed "replay: NAME ok" or "replay: NAME FAILED":
+#   round trip (must-show 2): each log goes pfe_replay -> vcan -> candump -L
+#     and comes back with the same frames in the same order (ids, FD flags
+#     and data, compared as text with the log's, timestamps aside): the
+#     drive, each log of logs/, and logs that candump itself wrote of cangen
+#     traffic (11-bit, 29-bit, remote frames on vcan0; cangen -m's mix of
+#     CAN FD, BRS, ESI, remote, 29-bit on vcan1 with MTU 72)
+#   formats (must-show 3): the drive as Vector ASC (written by can-utils'
+#     log2asc) and as candump's printed output (-t a and -t z, recorded while
+#     the drive was replayed) replays to the same frames as its candump log
+#   pacing (must-show 4): the drive's first 15 s in real time, by pfe_replay
+#     (as it comes, then with --spin-us 2000) and by canplayer, recorded by
+#     candump -L: lateness of the kernel's receive timestamps against the
+#     log's schedule (lateness_check), p99 and max printed; pfe_replay's p99
+#     must stay under 500 ms and its run last the slice's 15 s (a replayer
+#     sending early, late by whole frames or at the wrong speed would not)
+#   guard (must-show 6): lo, and an slcan interface on a pseudo-terminal,
+#     refused without --allow-real-bus: exit 2, the message, nothing sent
+# Exit status: the number of failed checks.
+set -u
+dir=$(cd "$(dirname "$0")" && pwd)
+rp=$dir/pfe_replay
+tmp=$(mktemp -d)
+failed=0
+SPEED=10      # round trips: ten times as fast as logged
+SLICE_S=15    # pacing: seconds of the drive in real time
+
+check() {
+    name=$1
+    shift
+    echo "== replay: $name"
+    "$@"
+    rc=$?
+    if [ "$rc" -eq 0 ]; then
+        echo "replay: $name ok"
+    else
+        echo "replay: $name FAILED (exit $rc)"
+        failed=$((failed + 1))
+    fi
+}
+
+# Waits until interface $2 has at least $3 receivers that take every frame
+# (candump without a filter registers can_id 000 mask 00000000 in
+# /proc/net/can/rcvlist_all), so that nothing is sent before they listen.
+# Fails if process $1 ends first.
+wait_listening() {
+    for _ in $(seq 200); do
+        receivers=$(grep -c "$2  *000  *00000000" /proc/net/can/rcvlist_all 2>/dev/null)
+        [ "${receivers:-0}" -ge "$3" ] && return 0
+        kill -0 "$1" 2>/dev/null || { echo "candump ended early"; return 1; }
+        sleep 0.05
+    done
+    echo "fewer than $3 receivers on $2 after 10 s"
+    return 1
+}
+
+# The frames of a candump log as text: field 3, upper case, no '.'.
+frames_of() {
+    grep '^ *(' "$1" | awk '{ f = toupper($3); gsub(/\./, "", f); print f }'
+}
+
+# $1 expected candump log, $2 captured candump log
+same_frames() {
+    frames_of "$1" >"$tmp/want.txt"
+    frames_of "$2" >"$tmp/got.txt"
+    if ! cmp -s "$tmp/want.txt" "$tmp/got.txt"; then
+        echo "frames differ: $(wc -l <"$tmp/want.txt") expected, $(wc -l <"$tmp/got.txt") received; first differences:"
+        diff "$tmp/want.txt" "$tmp/got.txt" | head -n 10
+        return 1
+    fi
+    echo "$(wc -l <"$tmp/got.txt") frames, the same, in the same order"
+}
+
+# Replays LOG ($1, any format) onto interface $2 with pfe_replay options
+# $4..., while candump -L records $3 frames into $tmp/cap.log. Every
+# interface of the log goes to $2.
+replay_capture() {
+    log=$1
+    ifc=$2
+    n=$3
+    shift 3
+    candump -L -n "$n" -T 20000 "$ifc" >"$tmp/cap.log" &
+    pid=$!
+    wait_listening "$pid" "$ifc" 1 || return 1
+    # shellcheck disable=SC2046 # one assignment per interface
+    "$rp" --quiet -I "$log" "$@" $(sed -n 's/^ *([^)]*) *\([^ ]*\) .*/\1/p' "$log" | sort -u |
+        sed "s/^/$ifc=/") || { kill "$pid"; return 1; }
+    wait "$pid" || { echo "candump: exit $? ($(wc -l <"$tmp/cap.log") of $n frames)"; return 1; }
+}
+
+# Round trip of candump log $1 on interface $2.
+round_trip() {
+    n=$(grep -c '^ *(' "$1")
+    replay_capture "$1" "$2" "$n" --speed "$SPEED" || return 1
+    same_frames "$1" "$tmp/cap.log"
+}
+
+# ---------------------------------------------------------------- the drive, three recordings
+
+# The drive replayed once, recorded three ways at the same time: the
+# candump log (round trip), and candump's printed output with -t a and -t z
+# (the same drive in the printed format, for the next checks).
+drive_three_ways() {
+    n=$(grep -c '^ *(' "$dir/drive.log")
+    candump -L -n "$n" -T 20000 vcan0 >"$tmp/drive_cap.log" &
+    p1=$!
+    candump -t a -n "$n" -T 20000 vcan0 >"$tmp/drive_a.txt" &
+    p2=$!
+    candump -t z -n "$n" -T 20000 vcan0 >"$tmp/drive_z.txt" &
+    p3=$!
+    wait_listening "$p1" vcan0 3 || return 1
+    "$rp" -I "$dir/drive.log" --speed "$SPEED" --quiet || return 1
+    wait "$p1" && wait "$p2" && wait "$p3" || { echo "a candump failed"; return 1; }
+    echo "drive.log: $n frames, $(tr -d '()' <"$dir/drive.log" | awk 'NR == 1 { t0 = $1 } END { printf "%.1f", $1 - t0 }') s of log, replayed at $SPEED x"
+    same_frames "$dir/drive.log" "$tmp/drive_cap.log" || return 1
+    echo "printed output, e.g.: $(sed -n 2p "$tmp/drive_a.txt")"
+}
+
+# Replays the drive in format $1 (file $2, mapped from its interface) and
+# checks the frames against the drive's candump log. The recordings are of
+# the drive replayed $SPEED times as fast: they replay at their own pace.
+drive_format() {
+    n=$(grep -c '^ *(' "$dir/drive.log")
+    replay_capture "$2" vcan0 "$n" || return 1
+    same_frames "$dir/drive.log" "$tmp/cap.log"
+}
+
+# The ASC: what can-utils' log2asc writes of the recorded drive.
+drive_asc() {
+    log2asc -I "$tmp/drive_cap.log" vcan0 >"$tmp/drive.asc" || return 1
+    echo "ASC by log2asc, e.g.: $(sed -n 5p "$tmp/drive.asc")"
+    n=$(grep -c '^ *(' "$dir/drive.log")
+    candump -L -n "$n" -T 20000 vcan0 >"$tmp/cap.log" &
+    pid=$!
+    wait_listening "$pid" vcan0 1 || return 1
+    "$rp" --quiet -I "$tmp/drive.asc" vcan0=can0 || { kill "$pid"; return 1; }
+    wait "$pid" || return 1
+    same_frames "$dir/drive.log" "$tmp/cap.log"
+}
+
+# ---------------------------------------------------------------- logs candump wrote of cangen
+
+cangen_log() {
+    candump -L -n 300 -T 20000 vcan0 >"$tmp/cangen.log" &
+    pid=$!
+    wait_listening "$pid" vcan0 1 || return 1
+    cangen vcan0 -n 100 -g 1 && cangen vcan0 -n 100 -g 1 -e && cangen vcan0 -n 100 -g 1 -R ||
+        { kill "$pid"; return 1; }
+    wait "$pid" || return 1
+    echo "candump wrote $(wc -l <"$tmp/cangen.log") frames of cangen, e.g. $(sed -n 250p "$tmp/cangen.log")"
+    round_trip "$tmp/cangen.log" vcan0
+}
+
+cangen_fd_log() {
+    ip link set dev vcan1 down && ip link set dev vcan1 mtu 72 && ip link set dev vcan1 up ||
+        { echo "cannot give vcan1 the CAN FD MTU"; return 1; }
+    candump -L -n 200 -T 20000 vcan1 >"$tmp/cangen_fd.log" &
+    pid=$!
+    wait_listening "$pid" vcan1 1 || return 1
+    cangen vcan1 -n 200 -g 1 -m || { kill "$pid"; return 1; }
+    wait "$pid" || return 1
+    echo "candump wrote $(grep -c '##' "$tmp/cangen_fd.log") CAN FD frames and $(grep -c '#R' "$tmp/cangen_fd.log") remote frames of 200, e.g. $(grep '##' "$tmp/cangen_fd.log" | head -n 1)"
+    round_trip "$tmp/cangen_fd.log" vcan1
+}
+
+# ---------------------------------------------------------------- pacing
+
+# p99 and max of a lateness_check line
+p99_of() { sed -n 's/.* p99 \([0-9]*\) us max \([0-9]*\) us.*/\1/p' "$1"; }
+max_of() { sed -n 's/.* p99 \([0-9]*\) us max \([0-9]*\) us.*/\2/p' "$1"; }
+uptime_cs() { awk '{ printf "%d\n", $1 * 100 }' /proc/uptime; }
+
+# Replays the slice with command "$2 ..." while candump -L records it;
+# lateness_check's line in $tmp/late_$1.txt, the run's wall time (in
+# hundredths of a second) in $tmp/dur_$1.txt.
+pace_run() {
+    tag=$1
+    shift
+    candump -L -n "$n" -T 20000 vcan0 >"$tmp/pace_$tag.log" &
+    pid=$!
+    wait_listening "$pid" vcan0 1 || return 1
+    t0=$(uptime_cs)
+    "$@" 2>"$tmp/summary_$tag.txt" || { cat "$tmp/summary_$tag.txt"; kill "$pid"; return 1; }
+    echo $(($(uptime_cs) - t0)) >"$tmp/dur_$tag.txt"
+    wait "$pid" || { echo "candump: exit $? ($(wc -l <"$tmp/pace_$tag.log") of $n frames)"; return 1; }
+    "$dir/lateness_check" "$tmp/slice.log" "$tmp/pace_$tag.log" >"$tmp/late_$tag.txt" || return 1
+    echo "$tag: received by candump: $(cat "$tmp/late_$tag.txt"); run $(cat "$tmp/dur_$tag.txt")0 ms"
+}
+
+pacing() {
+    "$rp" --dry-run -t --end "$SLICE_S" -I "$dir/drive.log" >"$tmp/slice.log" 2>/dev/null || return 1
+    n=$(wc -l <"$tmp/slice.log")
+    echo "the drive's first $SLICE_S s: $n frames, in real time, one after the other by:"
+    pace_run pfe_replay "$rp" --quiet -I "$tmp/slice.log" || return 1
+    echo "pfe_replay: its own view, send against deadline: $(grep lateness "$tmp/summary_pfe_replay.txt" | cut -d' ' -f2-)"
+    pace_run pfe_replay_spin "$rp" --quiet --spin-us 2000 -I "$tmp/slice.log" || return 1
+    echo "pfe_replay --spin-us 2000: its own view: $(grep lateness "$tmp/summary_pfe_replay_spin.txt" | cut -d' ' -f2-)"
+    pace_run canplayer canplayer -I "$tmp/slice.log" || return 1
+    echo "pacing: pfe_replay p99 $(p99_of "$tmp/late_pfe_replay.txt") us max $(max_of "$tmp/late_pfe_replay.txt") us;" \
+        "canplayer p99 $(p99_of "$tmp/late_canplayer.txt") us max $(max_of "$tmp/late_canplayer.txt") us"
+    echo "pacing: pfe_replay --spin-us 2000 p99 $(p99_of "$tmp/late_pfe_replay_spin.txt") us max $(max_of "$tmp/late_pfe_replay_spin.txt") us"
+    # Sending early or late by whole frames, or at the wrong speed, would
+    # show as lateness of the order of the log's 15 s; this machine's own
+    # jitter (QEMU without KVM) stays far below 500 ms.
+    for tag in pfe_replay pfe_replay_spin; do
+        p99=$(p99_of "$tmp/late_$tag.txt")
+        dur=$(cat "$tmp/dur_$tag.txt")
+        [ -n "$p99" ] && [ "$p99" -lt 500000 ] || { echo "$tag: p99 not under 500 ms"; return 1; }
+        [ "$dur" -ge $((SLICE_S * 100 - 10)) ] && [ "$dur" -le $((SLICE_S * 100 + 150)) ] ||
+            { echo "$tag: the run took ${dur}0 ms for ${SLICE_S} s of log"; return 1; }
+    done
+}
+
+# ---------------------------------------------------------------- the real-bus guard
+
+# $1 expected status, $2 text of the message, then the command
+refused() {
+    want=$1
+    text=$2
+    shift 2
+    "$@" >"$tmp/guard_out.txt" 2>"$tmp/guard_err.txt"
+    rc=$?
+    cat "$tmp/guard_err.txt"
+    [ "$rc" -eq "$want" ] || { echo "exit $rc, $want expected"; return 1; }
+    grep -qF "$text" "$tmp/guard_err.txt" || { echo "no '$text' in the message"; return 1; }
+    [ ! -s "$tmp/guard_out.txt" ] || { echo "it wrote output"; return 1; }
+}
+
+guard_lo() {
+    refused 2 "refusing to send on lo: it is not a CAN interface" \
+        "$rp" -I "$dir/drive.log" lo=vcan0 || return 1
+    printf '%s\n' '(1700000000.000000) lo 123#01' >"$tmp/lo.log"
+    refused 2 "refusing to send on lo" "$rp" -I "$tmp/lo.log"
+}
+
+# The slcan interface exists only while slcan_run runs the command; nothing
+# is ever sent to it (refused before the socket is opened).
+guard_slcan() {
+    # shellcheck disable=SC2016 # $1 and $2 are for the inner shell
+    slcan_out=$("$dir/slcan_run" sh -c 'echo "$1: type $(cat /sys/class/net/$1/type)";
+        "$2" -I "$3" "$1=vcan0"; echo "exit $?"' sh {} "$rp" "$dir/drive.log" 2>&1)
+    rc=$?
+    echo "$slcan_out"
+    [ "$rc" -eq 0 ] || { echo "slcan_run: exit $rc (77: no slcan in this kernel)"; return 1; }
+    echo "$slcan_out" | grep -q "refusing to send on [^:]*: it is a real CAN bus, not a virtual one" ||
+        { echo "no refusal"; return 1; }
+    echo "$slcan_out" | grep -q "^exit 2$" || { echo "exit status not 2"; return 1; }
+}
+
+check "round trip: drive.log, and the drive as candump output" drive_three_ways
+for log in "$dir"/logs/*.log; do
+    [ -f "$log" ] || continue
+    check "round trip: logs/$(basename "$log")" round_trip "$log" vcan0
+done
+check "round trip: candump log of cangen (11-bit, 29-bit, remote)" cangen_log
+check "round trip: candump log of cangen -m (CAN FD, BRS, ESI, remote) on vcan1" cangen_fd_log
+check "the drive as ASC (log2asc) replays to the drive's frames" drive_asc
+check "the drive as candump -t a output replays to the drive's frames" drive_format printed "$tmp/drive_a.txt"
+check "the drive as candump -t z output replays to the drive's frames" drive_format printed "$tmp/drive_z.txt"
+check "pacing: pfe_replay and canplayer, $SLICE_S s in real time" pacing
+check "guard: lo refused" guard_lo
+check "guard: slcan refused" guard_slcan
+rm -rf "$tmp"
+echo "replay: $failed check(s) failed"
+exit "$failed"
