@@ -71,10 +71,10 @@ $(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 
 # The same firmware over a log in logical time (hal/replay); its twin on the
 # Cortex-M4 is $(M4_OUT)/pfe_ecu_mps2.elf.
-REPLAY_SRC := $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/replay/hal_replay_ecu.c
-$(HOST)/pfe_ecu_replay: sim_host/ecu_replay.c $(REPLAY_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+ECU_REPLAY_SRC := $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/replay/hal_replay_ecu.c
+$(HOST)/pfe_ecu_replay: sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_replay.c $(REPLAY_SRC) $(FW_SRC)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(FW_SRC)
 
 $(HOST)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -160,7 +160,7 @@ $(GEN)/road_%.c: $(ROADS)/%.csv $(HOST)/road2c
 # The product image: the model's known-answer run over the bundled hilly road.
 $(call m4_image,pfe_mps2,$(FW_SRC) hal/mps2/main_selfcheck.c $(GEN)/road_hilly.c)
 # The firmware running a drive from a log, files through semihosting.
-$(call m4_image,pfe_ecu_mps2,$(FW_SRC) $(REPLAY_SRC) hal/mps2/main_ecu.c)
+$(call m4_image,pfe_ecu_mps2,$(FW_SRC) $(ECU_REPLAY_SRC) hal/mps2/main_ecu.c)
 # Instruction counts (make bench).
 $(call m4_image,pfe_bench,$(FW_SRC) tests/bench/m4_bench.c $(GEN)/road_hilly.c)
 # The firmware's unit tests, cross-compiled.
