@@ -145,8 +145,8 @@ include mk/m4.mk
 # (clamps, saturating adds) live in their own files and must inline.
 include mk/vcan.mk
 include mk/sensitivity.mk
-include mk/run.mk
 include mk/replay.mk
+include mk/run.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto

@@ -10,7 +10,7 @@
 # Targets:
 #   run               build, then scripts/run_drive.sh: pfe_ecu and pfe_record
 #                     on vcan0 (natively, else under QEMU), the drive replayed
-#                     by canplayer, then run_report: summary, CSV, plot, and
+#                     by pfe_replay, then run_report: summary, CSV, plot, and
 #                     the verdict on RUN_EXPECT (exit status 1 when it fails)
 #   drive-logs        regenerate the committed logs sim_host/logs/*.log.gz
 #   logs              expand them into $(LOG_DIR)/
@@ -103,7 +103,7 @@ test-drive-logs: $(HOST)/drivegen
 # ---------------------------------------------------------------- make run
 
 # What the bus part gets (scripts/run_drive.sh): static programs, the drive.
-RUN_PAYLOAD_FILES := pfe_ecu pfe_record drive.log run_drive.sh
+RUN_PAYLOAD_FILES := pfe_ecu pfe_record pfe_replay drive.log run_drive.sh
 RUN_STATIC := $(WARN) -static -O2
 
 $(RUN_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
@@ -113,6 +113,11 @@ $(RUN_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 $(RUN_PAYLOAD)/pfe_record: sim_host/pfe_record.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(RUN_STATIC) -o $@ $<
+
+# The replayer, static as mk/replay.mk builds it for its own VM tests.
+$(RUN_PAYLOAD)/pfe_replay: $(REPLAY_PAYLOAD)/pfe_replay
+	@mkdir -p $(@D)
+	cp $< $@
 
 $(RUN_PAYLOAD)/run_drive.sh: scripts/run_drive.sh
 	@mkdir -p $(@D)

@@ -33,12 +33,11 @@ set -u
 me=run_drive.sh
 here=$(cd "$(dirname "$0")" && pwd)
 
-# The replayer, the one place where the drive is sent: can-utils' canplayer
-# with its log timestamps as pacing. sim_host/pfe_replay takes the same
-# arguments; to use it, link it with -static into the payload folder (see
-# RUN_PAYLOAD_FILES in mk/run.mk) and make this line
-#   REPLAY_CMD="$here/pfe_replay -I"
-REPLAY_CMD="canplayer -I"
+# The replayer, the one place where the drive is sent: sim_host/pfe_replay
+# (static, in the payload folder) with the log's timestamps as pacing; it
+# ends with its summary (frames sent, dropped, lateness). can-utils'
+# canplayer takes the same arguments: REPLAY_CMD="canplayer -I".
+REPLAY_CMD="$here/pfe_replay -I"
 
 # ------------------------------------------------------------------ bus part
 
