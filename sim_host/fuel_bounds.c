@@ -147,6 +147,7 @@ int fuel_bounds_compute(const node_config_t *cfg, const ref_road_t *road, fuel_b
                  (out->eta_max * rho_d);                                   /* eq. 5.1 */
     hi->fuel_l = (hi->work_air_j + hi->work_roll_j + hi->work_grade_j + hi->aux_j) /
                  (out->eta_min * rho_d);
+    lo->fuel_l = fmax(lo->fuel_l, 0.0); /* the window can make the grade term very negative */
     out->lower_l = lo->fuel_l;
     out->upper_l = hi->fuel_l;
     out->same_speed = fabs(out->end_kmh - out->start_kmh) <= FUEL_BOUNDS_SAME_SPEED_KMH;

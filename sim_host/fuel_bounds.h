@@ -39,13 +39,15 @@
  *   is (N - 1) (gap + length). The window is cut by the road's ends, where
  *   the road's first and last grades extend it, as in the node model.
  * - Grade and rolling keep the thesis's small angles (sin alpha ~ alpha,
- *   cos alpha ~ 1); the node model uses exact ones. The difference is below
- *   0.1 % of the grade force and 0.13 % of rolling at 5 %.
+ *   cos alpha ~ 1); the node model uses exact ones. At a 5 % grade both
+ *   differ from the exact forms by 0.125 % (1 - 1 / sqrt(1.0025)).
  * - Auxiliary power (the thesis leaves it out: it is the same in both
  *   models): the time with fuel on is not, so the lower bound takes the
  *   shorter of the two runs' fuel-on times and the upper bound the longer.
  * - The bounds are on the fuel of the whole platoon over the route, the
  *   quantity the node model gives (each truck over the whole road).
+ * - A lower bound below zero (a long platoon on a hilly road, whose window
+ *   holds a steep downgrade nearly everywhere) is raised to zero.
  *
  * They hold when the route meets the thesis's assumptions (5.1.2, 5.1.4):
  * the platoon ends at the speed it started with, and the route has at least

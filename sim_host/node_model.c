@@ -98,6 +98,9 @@ int node_config_check(const node_config_t *cfg, char *err, size_t err_len)
     if (!in_range(cfg->step_s, 0.001, 1.0)) {
         return bad(err, err_len, "time step outside 0.001 .. 1 s");
     }
+    if (cfg->step_s * (cfg->follow_kv_s + (cfg->time_gap_s * cfg->follow_kp_s2)) > 1.0) {
+        return bad(err, err_len, "time step too long for the follower gains: dt (kv + h kp) > 1");
+    }
     return 0;
 }
 

@@ -117,7 +117,10 @@ void node_config_default(node_config_t *cfg, unsigned n_vehicles);
  * fails its pfe_calib_check_*, speeds outside [1, 70] m/s, h outside
  * [0, 10] s, d0 outside [0, 100] m, a length outside [0, 30] m, gains not
  * positive or above 1000 (kv may be 0), a margin outside [0, 10] m/s, dt
- * outside [0.001, 1] s. err may be NULL. */
+ * outside [0.001, 1] s, or dt (kv + h kp) > 1: the followers' fast pole
+ * lies near -(kv + h kp), and a longer step takes the explicit update to
+ * the edge of its stability (0.34 s with the defaults; at 0.5 s the hilly
+ * road's node fuel is off by 0.8 %). err may be NULL. */
 int node_config_check(const node_config_t *cfg, char *err, size_t err_len);
 
 /* The gap policy d0 + h v, m. */
@@ -186,7 +189,8 @@ typedef struct {
  * empty road. */
 int node_sim_init(node_sim_t *s, const node_config_t *cfg, const ref_road_t *road);
 /* Returns 1 (a step taken), 0 (the last truck has left the road) or -1 (a
- * truck stalled below 1 m/s: the road is too steep for it). */
+ * truck stalled below 1 m/s: the road is too steep for it; the state is then
+ * part-way through a step and only good for reporting). */
 int node_sim_step(node_sim_t *s);
 /* Steps to the end and summarises. Returns 0 or -1 (stalled). */
 int node_sim_run(node_sim_t *s, model_summary_t *out);
