@@ -255,6 +255,12 @@ static void test_bad_configurations_are_refused(void **state)
     cfg.step_s = 0.0;
     assert_int_equal(node_config_check(&cfg, err, sizeof err), -1);
     node_config_default(&cfg, 5U);
+    cfg.step_s = 0.35; /* 0.35 s (2.5 /s + 0.4 s 1 /s^2) = 1.015 */
+    assert_int_equal(node_config_check(&cfg, err, sizeof err), -1);
+    assert_non_null(strstr(err, "time step too long"));
+    cfg.step_s = 0.34; /* 0.986 */
+    assert_int_equal(node_config_check(&cfg, err, sizeof err), 0);
+    node_config_default(&cfg, 5U);
     cfg.time_gap_s = NAN;
     assert_int_equal(node_config_check(&cfg, err, sizeof err), -1);
     node_config_default(&cfg, 5U);
