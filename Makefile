@@ -53,7 +53,8 @@ deps: $(DEPS_STAMP)
 
 TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu $(HOST)/pfe_ecu_replay \
          $(HOST)/sensitivity $(HOST)/drivegen $(HOST)/pfe_record $(HOST)/run_report \
-         $(HOST)/pfe_replay $(HOST)/pfe_decode
+         $(HOST)/pfe_replay $(HOST)/pfe_decode $(HOST)/platoon_compare $(HOST)/route_choice \
+         $(HOST)/routegen
 tools: $(TOOLS)
 
 $(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
@@ -147,6 +148,7 @@ include mk/vcan.mk
 include mk/sensitivity.mk
 include mk/replay.mk
 include mk/run.mk
+include mk/thesis.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
@@ -257,7 +259,8 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 	    $(E2E_PAYLOAD)/drive.log
 
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
-      test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test
+      test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
+      thesis-test
 
 # ---------------------------------------------------------------- benchmarks
 
@@ -266,7 +269,7 @@ $(HOST)/host_bench: tests/bench/host_bench.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SI
 	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ $< $(FW_SRC) $(REF_SRC) -lm
 
 bench: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf \
-        $(E2E_PAYLOAD)/drive.log replay-bench
+        $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench
 	@$(M4_RUN) $(M4_OUT)/pfe_bench.elf
 	@# The ECU's tick over a whole drive (61.6 s, 6263 ticks) in the image that
 	@# replays it: receive, decode, estimate, encode, send; feeding the log apart.

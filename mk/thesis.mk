@@ -1,0 +1,102 @@
+# The thesis's claims on the host: node model against object model (5.2),
+# fuel bounds (5.1) and route choice (sim_host/node_model.h, fuel_bounds.h,
+# route_gen.h).
+#
+# Include from the top-level Makefile after mk/vcan.mk (it uses HOST,
+# HOSTSAN, ROADS, FW_SRC, FW_HDR, HOST_CFLAGS, SAN_CFLAGS, DEPS_STAMP):
+#
+#   include mk/thesis.mk
+#   test: thesis-test
+#   bench: thesis-bench
+#
+# Targets:
+#   thesis-test     the node-model and fuel-bound tests (ASan, UBSan), the
+#                   property test over 250 seeded hilly routes included, and
+#                   the bundled routes regenerated and compared byte for byte
+#   thesis-bench    instructions of node and object model over the 12 km
+#                   hilly road for N = 5, 10, 20, 50 (callgrind, counted
+#                   inside node_sim_run and object_sim_run only; both models
+#                   step 0.1 s of time), their ratio, which must reach 0.9 N;
+#                   and the host time of 12 km of the object model (median
+#                   of 21 runs)
+#   thesis-report   the tables 5.1 to 5.3 and 5.5 analogues on the three
+#                   roads with N = 5, the same without drag reduction (the
+#                   cause of the uphill difference), and the route choice on
+#                   the bundled routes: ridge, detour and rolling; ridge
+#                   against the long bypass
+
+THESIS_SRC := sim_host/node_model.c sim_host/fuel_bounds.c sim_host/route_gen.c \
+              sim_host/ref_model.c sim_host/road_csv.c
+THESIS_HDR := sim_host/node_model.h sim_host/fuel_bounds.h sim_host/route_gen.h \
+              sim_host/ref_model.h sim_host/road_csv.h
+ROUTES := sim_host/routes
+ROUTE_NAMES := ridge detour rolling bypass
+THESIS_ROADS := $(foreach r,$(ROAD_NAMES),--road $(ROADS)/$(r).csv)
+THESIS_BENCH_N := 5 10 20 50
+VALGRIND_STAMP := $(BUILD)/.deps-valgrind
+
+.PHONY: thesis-test thesis-bench thesis-report
+
+$(HOST)/platoon_compare: sim_host/platoon_compare.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/platoon_compare.c $(THESIS_SRC) $(FW_SRC) -lm
+
+$(HOST)/route_choice: sim_host/route_choice.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/route_choice.c $(THESIS_SRC) $(FW_SRC) -lm
+
+$(HOST)/routegen: sim_host/routegen.c sim_host/route_gen.c sim_host/route_gen.h | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -o $@ sim_host/routegen.c sim_host/route_gen.c
+
+$(HOSTSAN)/routegen: sim_host/routegen.c sim_host/route_gen.c sim_host/route_gen.h | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -o $@ sim_host/routegen.c sim_host/route_gen.c
+
+$(HOSTSAN)/test_node_model: tests/host/test_node_model.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(THESIS_SRC) $(FW_SRC) -lcmocka -lm
+
+$(HOSTSAN)/test_fuel_bounds: tests/host/test_fuel_bounds.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(THESIS_SRC) $(FW_SRC) -lcmocka -lm
+
+thesis-test: $(HOSTSAN)/test_node_model $(HOSTSAN)/test_fuel_bounds $(HOSTSAN)/routegen
+	@echo "== host: test_node_model"; $(HOSTSAN)/test_node_model $(ROADS)
+	@echo "== host: test_fuel_bounds"; $(HOSTSAN)/test_fuel_bounds
+	@echo "== host: bundled routes against routegen"
+	@set -e; for r in $(ROUTE_NAMES); do \
+	    $(HOSTSAN)/routegen $$r --out $(BUILD)/route_$$r.csv; \
+	    if cmp -s $(BUILD)/route_$$r.csv $(ROUTES)/$$r.csv; then echo "   $$r.csv: identical"; \
+	    else echo "$(ROUTES)/$$r.csv differs from routegen $$r: regenerate it"; exit 1; fi; done
+
+$(VALGRIND_STAMP): scripts/deps.sh
+	@mkdir -p $(@D)
+	sh scripts/deps.sh valgrind
+	@touch $@
+
+# Instruction counts: callgrind counts only while node_sim_run or
+# object_sim_run runs (loading the road and the rest are left out).
+thesis-bench: $(HOST)/platoon_compare $(VALGRIND_STAMP)
+	@set -e; mkdir -p $(BUILD)/callgrind; for n in $(THESIS_BENCH_N); do \
+	    for m in node object; do \
+	        valgrind --tool=callgrind --callgrind-out-file=$(BUILD)/callgrind/$$m.n$$n \
+	            --toggle-collect=$${m}_sim_run $(HOST)/platoon_compare --only $$m \
+	            --road $(ROADS)/hilly.csv --vehicles $$n >/dev/null 2>$(BUILD)/callgrind/$$m.n$$n.log \
+	        || { cat $(BUILD)/callgrind/$$m.n$$n.log; exit 1; }; \
+	    done; \
+	    node=$$(awk '/^totals:/ { print $$2 }' $(BUILD)/callgrind/node.n$$n); \
+	    obj=$$(awk '/^totals:/ { print $$2 }' $(BUILD)/callgrind/object.n$$n); \
+	    echo "bench: node_12km_insn_n$$n $$node insn"; \
+	    echo "bench: object_12km_insn_n$$n $$obj insn"; \
+	    awk -v a=$$node -v b=$$obj -v n=$$n 'BEGIN { r = a / b; \
+	        printf "bench: node_object_insn_ratio_n%d %.2f x\n", n, r; \
+	        if (!(r >= 0.9 * n)) { printf "thesis-bench: ratio %.2f below 0.9 N = %.1f\n", r, 0.9 * n; exit 1 } }'; \
+	done
+	@$(HOST)/platoon_compare --bench --repeat 21 --road $(ROADS)/hilly.csv --vehicles 5
+
+thesis-report: $(HOST)/platoon_compare $(HOST)/route_choice
+	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5
+	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5 --no-drag-reduction --repeat 1
+	$(HOST)/route_choice $(ROUTES)/ridge.csv $(ROUTES)/detour.csv $(ROUTES)/rolling.csv
+	$(HOST)/route_choice $(ROUTES)/ridge.csv $(ROUTES)/bypass.csv
