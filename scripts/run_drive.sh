@@ -37,7 +37,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 # (static, in the payload folder) with the log's timestamps as pacing; it
 # ends with its summary (frames sent, dropped, lateness). can-utils'
 # canplayer takes the same arguments: REPLAY_CMD="canplayer -I".
-REPLAY_CMD="$here/pfe_replay -I"
+REPLAY_CMD="$here/pfe_replay --quiet -I"
 
 # ------------------------------------------------------------------ bus part
 
