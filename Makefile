@@ -254,9 +254,9 @@ $(HOST)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_m
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(FW_SRC)
 
 check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_OUT)/pfe_ecu_mps2.elf \
-        $(E2E_PAYLOAD)/drive.log
+        $(E2E_PAYLOAD)/drive.log $(BUILD)/logs/hilly.log
 	sh tests/replay/host_vs_m4.sh $(BUILD)/replay $(HOST) $(M4_OUT)/pfe_ecu_mps2.elf \
-	    $(E2E_PAYLOAD)/drive.log
+	    $(E2E_PAYLOAD)/drive.log $(BUILD)/logs/hilly.log
 
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
       test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \

@@ -92,7 +92,9 @@ replay-test: $(HOSTSAN)/test_canlog $(HOSTSAN)/pfe_replay $(HOSTSAN)/pfe_decode 
 
 # Static programs: the VM's initramfs has no C library.
 REPLAY_STATIC := $(WARN) -O2 -static -I. -Ifirmware
-REPLAY_LOGS := $(sort $(wildcard sim_host/logs/*.log))
+# The bundled drive logs, committed gzip-compressed, expanded into
+# $(BUILD)/logs/ by mk/run.mk's rule.
+REPLAY_LOGS := $(patsubst sim_host/logs/%.log.gz,$(BUILD)/logs/%.log,$(sort $(wildcard sim_host/logs/*.log.gz)))
 
 $(REPLAY_PAYLOAD)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -119,7 +121,7 @@ $(REPLAY_PAYLOAD)/drive.log: $(REPLAY_DRIVE_LOG)
 $(REPLAY_PAYLOAD)/logs/.copied: $(REPLAY_LOGS) mk/replay.mk
 	@rm -rf $(@D) && mkdir -p $(@D)
 	@for f in $(REPLAY_LOGS); do cp "$$f" $(@D)/ || exit 1; done
-	@echo "replay: $(words $(REPLAY_LOGS)) log(s) from sim_host/logs in the payload"
+	@echo "replay: $(words $(REPLAY_LOGS)) bundled log(s) from sim_host/logs in the payload"
 	@touch $@
 
 REPLAY_PAYLOAD_FILES := $(addprefix $(REPLAY_PAYLOAD)/,pfe_replay lateness_check slcan_run \

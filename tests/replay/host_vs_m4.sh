@@ -8,12 +8,15 @@
 #               pfe_faults must fail on the fault-free record (it can fail)
 #   bad.log     a log with bad lines: both refuse it the same way (exit 1,
 #               same first bad line named)
+#   PLATOON_LOG a whole bundled road (5 trucks from PFE_PlatoonConfig, grade
+#               previews): identical records, and predictions sent with
+#               values (PFE_FuelPrediction, PGN 0xFF03, not "not available")
 #
-#   tests/replay/host_vs_m4.sh OUTDIR HOST_TOOLS_DIR M4_ELF DRIVE_LOG
+#   tests/replay/host_vs_m4.sh OUTDIR HOST_TOOLS_DIR M4_ELF DRIVE_LOG [PLATOON_LOG]
 #
 # Exit status 0 when all of it holds.
 set -u
-out=$1 tools=$2 elf=$3 drive=$4
+out=$1 tools=$2 elf=$3 drive=$4 platoon=${5:-}
 root=$(cd "$(dirname "$0")/../.." && pwd)
 mkdir -p "$out"
 fail=0
@@ -76,6 +79,15 @@ if [ "$bad_rc" -ne 1 ] || ! grep -q 'line 101: bad data' "$out/bad.m4.txt" ||
     fail=1
 else
     echo "replay bad: both name it: $(grep 'bad lines' "$out/bad.m4.txt")"
+fi
+if [ -n "$platoon" ]; then
+    run_both platoon "$platoon" || { echo "replay platoon: failed"; fail=1; }
+    # PFE_FuelPrediction from the module (18FF038C): PredictedFuel in bytes 1-2.
+    n_pred=$(grep -c ' 18FF038C#' "$out/platoon.m4.log")
+    n_valid=$(grep ' 18FF038C#' "$out/platoon.m4.log" | grep -vc '#FFFF')
+    echo "replay platoon: $n_pred predictions sent, $n_valid with values, e.g." \
+        "$(grep ' 18FF038C#' "$out/platoon.m4.log" | grep -v '#FFFF' | sed -n 100p)"
+    [ "$n_valid" -gt $((n_pred / 2)) ] || { echo "replay platoon: too few predictions"; fail=1; }
 fi
 [ "$fail" -eq 0 ] && echo "replay: host and Cortex-M4 agree on every log"
 exit "$fail"
