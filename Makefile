@@ -272,7 +272,8 @@ bench: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF) $(M4_OUT)/pfe_
         $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench
 	@$(M4_RUN) $(M4_OUT)/pfe_bench.elf
 	@# The ECU's tick over a whole drive (61.6 s, 6263 ticks) in the image that
-	@# replays it: receive, decode, estimate, encode, send; feeding the log apart.
+	@# replays it: receive, decode, estimate, encode, send, and the prediction's
+	@# share over the drive's grade previews; feeding the log apart.
 	@$(M4_RUN) $(M4_OUT)/pfe_ecu_mps2.elf --log $(E2E_PAYLOAD)/drive.log | awk '/^m4:/ { \
 	    print "bench: ecu_drive_tick_mean " $$5 " insn"; print "bench: ecu_drive_tick_max " $$7 " insn"; \
 	    print "bench: replay_feed_mean " $$9 " insn"; ok = 1 } END { exit !ok }'
