@@ -9,8 +9,9 @@
 #   bad.log     a log with bad lines: both refuse it the same way (exit 1,
 #               same first bad line named)
 #   PLATOON_LOG a whole bundled road (5 trucks from PFE_PlatoonConfig, grade
-#               previews): identical records, and predictions sent with
-#               values (PFE_FuelPrediction, PGN 0xFF03, not "not available")
+#               previews, sensor noise): identical records, judged by
+#               ecu_check, and predictions sent with values
+#               (PFE_FuelPrediction, PGN 0xFF03, not "not available")
 #
 #   tests/replay/host_vs_m4.sh OUTDIR HOST_TOOLS_DIR M4_ELF DRIVE_LOG [PLATOON_LOG]
 #
@@ -82,6 +83,7 @@ else
 fi
 if [ -n "$platoon" ]; then
     run_both platoon "$platoon" || { echo "replay platoon: failed"; fail=1; }
+    "$tools/ecu_check" "$out/platoon.m4.log" || fail=1
     # PFE_FuelPrediction from the module (18FF038C): PredictedFuel in bytes 1-2.
     n_pred=$(grep -c ' 18FF038C#' "$out/platoon.m4.log")
     n_valid=$(grep ' 18FF038C#' "$out/platoon.m4.log" | grep -vc '#FFFF')
