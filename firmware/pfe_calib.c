@@ -1,6 +1,7 @@
 /* pfe_calib.c - default calibration and range checks (contract in pfe_calib.h). */
 #include "pfe_calib.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "pfe_fixed.h"
@@ -50,7 +51,7 @@ int pfe_calib_check_vehicle(const pfe_vehicle_calib_t *v)
     if (v == NULL) {
         return PFE_EINVAL;
     }
-    const int ok = (v->mass_kg >= PFE_MASS_MIN_KG) && (v->mass_kg <= PFE_MASS_MAX_KG) &&
+    const bool ok = (v->mass_kg >= PFE_MASS_MIN_KG) && (v->mass_kg <= PFE_MASS_MAX_KG) &&
                    (v->rot_mass_kg <= v->mass_kg) &&
                    (v->drag_area_mm2 <= PFE_DRAG_AREA_MAX_MM2) &&
                    (v->roll_coef_ppm <= 100000U) &&
@@ -67,7 +68,7 @@ int pfe_calib_check_env(const pfe_env_calib_t *env)
     if (env == NULL) {
         return PFE_EINVAL;
     }
-    const int ok = (env->air_density_g_m3 >= 500U) && (env->air_density_g_m3 <= 2000U) &&
+    const bool ok = (env->air_density_g_m3 >= 500U) && (env->air_density_g_m3 <= 2000U) &&
                    (env->gravity_um_s2 >= 9700000U) && (env->gravity_um_s2 <= 9900000U) &&
                    (env->fuel_energy_j_ml >= 10000U) && (env->fuel_energy_j_ml <= 60000U);
     return ok ? PFE_OK : PFE_EINVAL;
@@ -96,7 +97,7 @@ int pfe_calib_check_cruise(const pfe_cruise_calib_t *cruise)
     if (cruise == NULL) {
         return PFE_EINVAL;
     }
-    const int ok = (cruise->kp_milli_per_s > 0U) && (cruise->kp_milli_per_s <= 5000U) &&
+    const bool ok = (cruise->kp_milli_per_s > 0U) && (cruise->kp_milli_per_s <= 5000U) &&
                    (cruise->ki_milli_per_s2 <= 5000U);
     return ok ? PFE_OK : PFE_EINVAL;
 }
@@ -118,11 +119,14 @@ uint32_t pfe_drag_reduction_bp(const pfe_drag_table_t *drag, uint32_t position,
             const uint32_t span = drag->gap_mm[k] - d0;
             const int64_t dy = (int64_t)r[k] - (int64_t)r[k - 1U];
             /* |dy| <= 10000 and gap_mm - d0 < 2^32: product below 2^46. */
-            const int64_t num = dy * (int64_t)(gap_mm - d0);
-            const int64_t half = (int64_t)(span / 2U);
+            const uint32_t into_mm = gap_mm - d0;
+            const uint32_t half_span = span / 2U;
+            const int64_t num = dy * (int64_t)into_mm;
+            const int64_t half = (int64_t)half_span;
             const int64_t step = (num >= 0) ? ((num + half) / (int64_t)span)
                                             : -((-num + half) / (int64_t)span);
-            return (uint32_t)((int64_t)r[k - 1U] + step);
+            const int64_t y = (int64_t)r[k - 1U] + step;
+            return (uint32_t)y;
         }
     }
     return r[PFE_DRAG_POINTS - 1U];

@@ -37,5 +37,5 @@ uint32_t pfe_j1939_id(uint8_t priority, uint32_t pgn, uint8_t destination, uint8
     if (((pdu >> 8) & 0xFFU) < J1939_PF_PDU2_MIN) {
         pdu = (pdu & ~(uint32_t)0xFFU) | (uint32_t)destination;
     }
-    return PFE_CAN_EFF_FLAG | ((uint32_t)(priority & 7U) << 26) | (pdu << 8) | (uint32_t)source;
+    return PFE_CAN_EFF_FLAG | (((uint32_t)priority & 7U) << 26) | (pdu << 8) | (uint32_t)source;
 }

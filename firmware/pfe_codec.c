@@ -392,7 +392,8 @@ static const pfe_sig_u64_t u64_na = {0U, PFE_SIG_NOT_AVAILABLE};
 /* Unit conversions of the received raw values (raw within its valid range). */
 static int32_t speed_mm_s_of_raw(uint32_t raw)       /* 1/256 km/h = 625/576 mm/s */
 {
-    return (int32_t)(((raw * 625U) + 288U) / 576U);  /* raw <= 0xFAFF: below 2^26 */
+    const uint32_t mm_s = ((raw * 625U) + 288U) / 576U;  /* raw <= 0xFAFF: below 2^26 */
+    return (int32_t)mm_s;
 }
 
 static int32_t angle_udeg_of_raw(uint32_t raw)       /* 0.002 deg, offset -64 deg */

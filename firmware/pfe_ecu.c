@@ -51,7 +51,7 @@ int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_stat
         (cfg->save_interval_ms > 3600000U) || (cfg->preferred_address > 253U)) {
         return PFE_EINVAL;
     }
-    memset(ecu, 0, sizeof *ecu);
+    (void)memset(ecu, 0, sizeof *ecu);
     ecu->cfg = *cfg;
     if (ecu->cfg.cruise == NULL) {
         ecu->cfg.cruise = &pfe_default_cruise;
@@ -305,8 +305,8 @@ static void predict(pfe_ecu_t *ecu, uint64_t now_us)
     if ((ecu->predict.phase == PFE_PREDICT_IDLE) && speed_ok &&
         (ecu->preview_buf.phase == PFE_PREVIEW_READY) &&
         (ecu->preview_new || ((now_us - ecu->predict_start_us) >= PFE_ECU_PREDICT_PERIOD_US))) {
-        const int32_t set_speed = (ecu->platoon_msg.set_speed_mm_s.state == PFE_SIG_VALID) &&
-                                          !ecu->degraded
+        const int32_t set_speed = ((ecu->platoon_msg.set_speed_mm_s.state == PFE_SIG_VALID) &&
+                                   !ecu->degraded)
                                       ? ecu->platoon_msg.set_speed_mm_s.value
                                       : ecu->cfg.default_set_speed_mm_s;
         const uint64_t travelled_mm = ecu->preview_travelled_um / 1000U;
@@ -367,10 +367,10 @@ static void encode_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f)
         m.rx_frames_dropped = sig_u32(clamp_counter(ecu->count.rx_dropped), true);
         m.tick_overruns = sig_u32(clamp_counter(ecu->count.overruns), true);
         m.tx_frames_dropped = sig_u32(clamp_counter(ecu->count.tx_dropped), true);
-        m.warming_up = sig_u32((flags & PFE_EST_WARMING_UP) != 0U ? 1U : 0U, true);
-        m.speed_clamped = sig_u32((flags & PFE_EST_SPEED_CLAMPED) != 0U ? 1U : 0U, true);
-        m.grade_clamped = sig_u32((flags & PFE_EST_GRADE_CLAMPED) != 0U ? 1U : 0U, true);
-        m.output_saturated = sig_u32((flags & PFE_EST_SATURATED) != 0U ? 1U : 0U, true);
+        m.warming_up = sig_u32(((flags & PFE_EST_WARMING_UP) != 0U) ? 1U : 0U, true);
+        m.speed_clamped = sig_u32(((flags & PFE_EST_SPEED_CLAMPED) != 0U) ? 1U : 0U, true);
+        m.grade_clamped = sig_u32(((flags & PFE_EST_GRADE_CLAMPED) != 0U) ? 1U : 0U, true);
+        m.output_saturated = sig_u32(((flags & PFE_EST_SATURATED) != 0U) ? 1U : 0U, true);
         r = pfe_codec_encode_status(f, &m, sa);
     }
     (void)r; /* clamping is reported in PFE_Status through the estimator flags */
@@ -443,11 +443,11 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
         const uint32_t t100 = ecu->tick % TICKS_PER_100MS;
         const uint32_t t1s = ecu->tick % TICKS_PER_1S;
         uint32_t due = ecu->request_pending;
-        due |= (t100 == 0U) ? (1U << OUT_LFE1) : 0U;
-        due |= (t100 == 1U) ? (1U << OUT_PLATOON_FUEL) : 0U;
-        due |= (t1s == 2U) ? (1U << OUT_HRLFC) : 0U;
-        due |= (t1s == 3U) ? (1U << OUT_PREDICTION) : 0U;
-        due |= (t1s == 4U) ? (1U << OUT_STATUS) : 0U;
+        due |= (t100 == 0U) ? (1U << (uint32_t)OUT_LFE1) : 0U;
+        due |= (t100 == 1U) ? (1U << (uint32_t)OUT_PLATOON_FUEL) : 0U;
+        due |= (t1s == 2U) ? (1U << (uint32_t)OUT_HRLFC) : 0U;
+        due |= (t1s == 3U) ? (1U << (uint32_t)OUT_PREDICTION) : 0U;
+        due |= (t1s == 4U) ? (1U << (uint32_t)OUT_STATUS) : 0U;
         for (uint32_t k = 0U; k < OUT_COUNT; k++) {
             if ((due & (1U << k)) != 0U) {
                 encode_output(ecu, k, &f);

@@ -115,7 +115,10 @@ typedef struct {
     uint32_t request_pending;          /* bit per output message asked for by a request */
     bool cannot_claim_pending;         /* answer with "cannot claim" (source 254) */
     /* inputs */
-    pfe_ecu_input_t speed, grade, config, preview;
+    pfe_ecu_input_t speed;
+    pfe_ecu_input_t grade;
+    pfe_ecu_input_t config;
+    pfe_ecu_input_t preview;
     int32_t speed_mm_s;
     int32_t grade_ppm;
     pfe_msg_platoon_config_t platoon_msg;

@@ -33,8 +33,12 @@ int64_t pfe_sat_add_i64(int64_t a, int64_t b);
 uint64_t pfe_sat_add_u64(uint64_t a, uint64_t b);
 
 /* Forces a function inline where the compiler can (GCC, Clang): for a hot
- * function whose calls pass constants that fold away once inlined. */
-#if defined(__GNUC__)
+ * function whose calls pass constants that fold away once inlined.
+ * PFE_NO_FORCE_INLINE leaves the choice to the compiler: the coverage build
+ * (mk/hardening.mk) defines it, so that such a function's branches count
+ * once, not once per call site, where its constant arguments make one
+ * direction of a branch impossible. */
+#if defined(__GNUC__) && !defined(PFE_NO_FORCE_INLINE)
 #define PFE_ALWAYS_INLINE __attribute__((always_inline)) inline
 #else
 #define PFE_ALWAYS_INLINE inline

@@ -1,6 +1,7 @@
 /* pfe_nvm.c - fuel totals that survive a reset (contract in pfe_nvm.h). */
 #include "pfe_nvm.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "pfe_fixed.h"
@@ -27,7 +28,8 @@ uint32_t pfe_crc32(const uint8_t *data, uint32_t len)
 static void put_le(uint8_t *p, uint64_t v, uint32_t n)
 {
     for (uint32_t k = 0U; k < n; k++) {
-        p[k] = (uint8_t)(v >> (8U * k));
+        const uint32_t shift = 8U * k;
+        p[k] = (uint8_t)(v >> shift);
     }
 }
 
@@ -35,7 +37,8 @@ static uint64_t get_le(const uint8_t *p, uint32_t n)
 {
     uint64_t v = 0U;
     for (uint32_t k = 0U; k < n; k++) {
-        v |= (uint64_t)p[k] << (8U * k);
+        const uint32_t shift = 8U * k;
+        v |= (uint64_t)p[k] << shift;
     }
     return v;
 }
@@ -70,14 +73,18 @@ int pfe_nvm_decode(const uint8_t in[PFE_NVM_RECORD_SIZE], pfe_nvm_state_t *state
 int pfe_nvm_pick(const uint8_t *slot0, const uint8_t *slot1, pfe_nvm_state_t *state)
 {
     pfe_nvm_state_t s[2];
-    const int ok0 = (slot0 != NULL) && (pfe_nvm_decode(slot0, &s[0]) == PFE_OK);
-    const int ok1 = (slot1 != NULL) && (pfe_nvm_decode(slot1, &s[1]) == PFE_OK);
+    const bool ok0 = (slot0 != NULL) && (pfe_nvm_decode(slot0, &s[0]) == PFE_OK);
+    const bool ok1 = (slot1 != NULL) && (pfe_nvm_decode(slot1, &s[1]) == PFE_OK);
     int pick = -1;
     if (ok0 && ok1) {
         /* Serial number arithmetic: slot 1 is newer when (s1 - s0) mod 2^32
          * lies in (0, 2^31). */
         const uint32_t d = s[1].sequence - s[0].sequence;
-        pick = ((d != 0U) && (d < 0x80000000UL)) ? 1 : 0;
+        if ((d != 0U) && (d < 0x80000000UL)) {
+            pick = 1;
+        } else {
+            pick = 0;
+        }
     } else if (ok0) {
         pick = 0;
     } else if (ok1) {

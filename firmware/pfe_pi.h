@@ -21,6 +21,7 @@
 #ifndef PFE_PI_H
 #define PFE_PI_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "pfe_fixed.h"
@@ -63,8 +64,8 @@ static inline int32_t pfe_pi_step(pfe_pi_t *pi, int32_t error, uint32_t dt_q16, 
     /* |I| <= 2^30, |step| <= 2^29, |P| <= 2^27: every sum below 2^31. */
     const int32_t trial_q4 = pi->integral_q4 + step_q4;
     const int32_t trial = p + ((trial_q4 + 8) >> 4);
-    const int winding_up = (trial > hi) && (step_q4 > 0);
-    const int winding_down = (trial < lo) && (step_q4 < 0);
+    const bool winding_up = (trial > hi) && (step_q4 > 0);
+    const bool winding_down = (trial < lo) && (step_q4 < 0);
     const int32_t integral = (winding_up || winding_down) ? pi->integral_q4 : trial_q4;
     pi->integral_q4 = pfe_clamp_i32(integral, lo * 16, hi * 16);
     return pfe_clamp_i32(p + ((pi->integral_q4 + 8) >> 4), lo, hi);

@@ -44,7 +44,7 @@
 
 void pfe_predict_init(pfe_predict_t *p)
 {
-    memset(p, 0, sizeof *p);
+    (void)memset(p, 0, sizeof *p);
     p->phase = PFE_PREDICT_IDLE;
 }
 
@@ -115,7 +115,10 @@ int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t previe
     p->lower_nl = 0;
     /* Bound platoons' air drag and efficiencies from the nominal one. */
     const uint32_t n = platoon->n_vehicles;
-    int64_t air_max = 0, air_min = INT64_MAX, fq_max = 0, fq_min = INT64_MAX;
+    int64_t air_max = 0;
+    int64_t air_min = INT64_MAX;
+    int64_t fq_max = 0;
+    int64_t fq_min = INT64_MAX;
     uint64_t keep_sum_bp = 0U;
     for (uint32_t i = 0U; i < n; i++) {
         const pfe_vehicle_t *v = &platoon->position[i];
@@ -131,7 +134,8 @@ int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t previe
     p->air_fast_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)air_min * keep_sum_bp, 10000U);
     p->fuel_upper_q20 = fq_max;
     p->fuel_lower_q20 = fq_min;
-    const uint64_t window_mm = (uint64_t)(n - 1U) * platoon->gap_mm;
+    const uint32_t followers = n - 1U;
+    const uint64_t window_mm = (uint64_t)followers * platoon->gap_mm;
     const uint64_t w = (window_mm + spacing_mm - 1U) / spacing_mm;
     p->window_samples = (w > PFE_PREVIEW_MAX_SAMPLES) ? PFE_PREVIEW_MAX_SAMPLES : (uint32_t)w;
     p->n_done = 0U;
@@ -168,7 +172,7 @@ static int start_run(pfe_predict_t *p)
     const int rc = pfe_sim_init(&p->sim, pl, &p->cruise, &p->road, p->set_speed_mm_s,
                                 p->start_speed_mm_s,
                                 (step < PFE_SIM_STEP_MIN_MM) ? PFE_SIM_STEP_MIN_MM : step);
-    memset(&p->sums, 0, sizeof p->sums);
+    (void)memset(&p->sums, 0, sizeof p->sums);
     if (bound) {
         /* The upper bound's drag is the slow platoon's, at the fast run's
          * speed; the lower bound's the fast platoon's at the slow run's. */
@@ -221,7 +225,9 @@ static uint32_t window_extremes(pfe_predict_t *p, bool upper, uint32_t count)
         p->win_count = 0U;
         p->win_next = 0U;
     }
-    uint32_t head = p->win_head, cnt = p->win_count, next = p->win_next;
+    uint32_t head = p->win_head;
+    uint32_t cnt = p->win_count;
+    uint32_t next = p->win_next;
     for (uint32_t k = p->n_done; k < end; k++) {
         const uint32_t hi = ((k + w) < n) ? (k + w) : (n - 1U);
         for (; next <= hi; next++) {
@@ -256,7 +262,8 @@ static uint32_t window_extremes(pfe_predict_t *p, bool upper, uint32_t count)
  * quotient is below 2^43 and, shifted by 2^-4, times fq < 2^22 below 2^61. */
 static int64_t kinetic_nl(const pfe_predict_t *p, int64_t fq)
 {
-    const int64_t v1 = p->nominal_end_speed_mm_s, v0 = p->start_speed_mm_s;
+    const int64_t v1 = p->nominal_end_speed_mm_s;
+    const int64_t v0 = p->start_speed_mm_s;
     const int64_t dv2 = (v1 * v1) - (v0 * v0);
     const int64_t ke_mj = ((int64_t)p->platoon->mass_kg * dv2) / 2000;
     return pfe_rshift_round(pfe_rshift_round(ke_mj, 4U) * fq, 16U);

@@ -1,6 +1,7 @@
 /* pfe_selfcheck.c - known-answer run of the whole model (contract in pfe_selfcheck.h). */
 #include "pfe_selfcheck.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "pfe_calib.h"
@@ -18,11 +19,13 @@ static pfe_estimator_t s_est;
 
 static uint64_t fold(uint64_t h, uint64_t value)
 {
+    uint64_t acc = h;
     for (uint32_t k = 0U; k < 8U; k++) {
-        h ^= (value >> (8U * k)) & 0xFFU;
-        h *= FNV_PRIME;
+        const uint32_t shift = 8U * k;
+        acc ^= (value >> shift) & 0xFFU;
+        acc *= FNV_PRIME;
     }
-    return h;
+    return acc;
 }
 
 int32_t pfe_selfcheck_spn84_mm_s(int32_t speed_mm_s)
@@ -54,8 +57,12 @@ int pfe_selfcheck_run(const pfe_road_t *road, uint32_t n_vehicles, int32_t set_s
     int32_t vmin = INT32_MAX;
     int32_t vmax = 0;
     int32_t bus_speed = pfe_selfcheck_spn84_mm_s(set_speed_mm_s);
-    int rc;
-    while ((rc = pfe_sim_step(&sim, road)) == PFE_SIM_RUNNING) {
+    int rc = PFE_SIM_RUNNING;
+    for (;;) {
+        rc = pfe_sim_step(&sim, road);
+        if (rc != PFE_SIM_RUNNING) {
+            break;
+        }
         h = fold(h, (uint64_t)(uint32_t)sim.speed_um_s);
         h = fold(h, (uint64_t)(uint32_t)sim.wheel_force_n);
         h = fold(h, (uint64_t)(uint32_t)sim.accel_um_s2);
@@ -67,11 +74,11 @@ int pfe_selfcheck_run(const pfe_road_t *road, uint32_t n_vehicles, int32_t set_s
         /* Every 10 ms tick up to the end of this step: tick k is at
          * k * 10 ms = k * 655.36 s * 2^16 / 100, compared without division. */
         while (((uint64_t)ticks * 65536U) <= (sim.time_q16 * 100U)) {
-            const int fresh = (ticks % PFE_EST_TICKS_PER_SPEED_PERIOD) == 0U;
+            const bool fresh = (ticks % PFE_EST_TICKS_PER_SPEED_PERIOD) == 0U;
             if (fresh) {
                 bus_speed = pfe_selfcheck_spn84_mm_s(v);
             }
-            const pfe_est_input_t in = {bus_speed, true, fresh != 0, sim.grade_ppm, true};
+            const pfe_est_input_t in = {bus_speed, true, fresh, sim.grade_ppm, true};
             const pfe_est_output_t *o = pfe_estimator_step(&s_est, &in);
             h = fold(h, o->flags);
             h = fold(h, (uint64_t)(uint32_t)o->speed_mm_s);

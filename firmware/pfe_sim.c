@@ -140,7 +140,8 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
         const int64_t work_coef = (int64_t)ds * obj->fuel_q20;
         const int64_t work_nl = pfe_rshift_round((int64_t)f * work_coef, 22U);
         const int64_t aux_nl = pfe_rshift_round(sim->aux_fuel_q8 * (int64_t)dt_q16, 24U);
-        fuel_step = (uint64_t)(work_nl + aux_nl);
+        const int64_t step_nl = work_nl + aux_nl;
+        fuel_step = (uint64_t)step_nl;
         if (with_sums) {
             sums->aux_nl += (uint64_t)aux_nl;
         }
@@ -175,23 +176,22 @@ int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps, pfe_
      * kind of run, so that a run without sums carries none of their cost. */
     pfe_sim_t s = *sim;
     const pfe_road_t rd = *road;
-    road = &rd;
     int r = PFE_SIM_RUNNING;
     if (sums == NULL) {
         uint32_t k = max_steps;
         while ((k != 0U) && (r == PFE_SIM_RUNNING)) {
-            r = step(&s, road, NULL, false, false);
+            r = step(&s, &rd, NULL, false, false);
             k -= (k != UINT32_MAX) ? 1U : 0U; /* UINT32_MAX: to the end */
         }
     } else {
         pfe_sim_sums_t t = *sums;
         if (t.bound_grade_20ppm == NULL) {
             for (uint32_t k = 0U; (k < max_steps) && (r == PFE_SIM_RUNNING); k++) {
-                r = step(&s, road, &t, true, false);
+                r = step(&s, &rd, &t, true, false);
             }
         } else {
             for (uint32_t k = 0U; (k < max_steps) && (r == PFE_SIM_RUNNING); k++) {
-                r = step(&s, road, &t, true, true);
+                r = step(&s, &rd, &t, true, true);
             }
         }
         *sums = t;

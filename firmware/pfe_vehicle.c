@@ -19,8 +19,9 @@ int pfe_vehicle_init(pfe_vehicle_t *veh, const pfe_vehicle_calib_t *calib,
     }
     /* rho [g/m^3] * A [mm^2] * (1 - phi) [1e-4] <= 2000 * 2e7 * 1e4 = 4e14;
      * k [N/(mm/s)^2] = that / (2 * 10^19); times 2^32 = that * 2^12 / 5^19. */
+    const uint32_t keep_bp = 10000U - reduction_bp;
     const uint64_t rho_a = (uint64_t)env->air_density_g_m3 * (uint64_t)calib->drag_area_mm2 *
-                           (uint64_t)(10000U - reduction_bp);
+                           (uint64_t)keep_bp;
     veh->air_q32 = (int64_t)pfe_udiv_round_u64(rho_a << 12, POW5_19);
     /* kg * 2^32 / 10^6 = kg * 2^26 / 5^6 = kg * 4295; m + mj <= 2e5 kg keeps it below 2^30. */
     veh->mass_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)calib->mass_kg << 26, POW5_6);
@@ -112,7 +113,8 @@ int32_t pfe_wheel_force_max_n(uint32_t power_max_w, uint32_t traction_max_n, int
     const uint32_t v = (uint32_t)speed_mm_s;
     const uint32_t q = power_max_w / v;
     const uint32_t r = power_max_w % v;
-    const uint64_t force = ((uint64_t)q * 1000U) + (uint64_t)((r * 1000U) / v);
+    const uint32_t rest_n = (r * 1000U) / v;
+    const uint64_t force = ((uint64_t)q * 1000U) + (uint64_t)rest_n;
     return (force < (uint64_t)cap) ? (int32_t)force : (int32_t)cap;
 }
 

@@ -17,7 +17,7 @@ bool hal_can_mem_frame_valid(const pfe_can_frame_t *f)
 
 void hal_can_mem_port_init(hal_can_mem_port_t *port, hal_can_rx_t *rx, uint32_t rx_cap)
 {
-    memset(port, 0, sizeof *port);
+    (void)memset(port, 0, sizeof *port);
     port->rx = rx;
     port->rx_cap = rx_cap;
 }

@@ -10,7 +10,7 @@
 void hal_ecu_loop_config(pfe_ecu_config_t *cfg, uint8_t address, uint32_t save_interval_ms,
                          uint32_t vehicles, uint32_t position, uint32_t gap_mm)
 {
-    memset(cfg, 0, sizeof *cfg);
+    (void)memset(cfg, 0, sizeof *cfg);
     cfg->preferred_address = address;
     cfg->name = 0x80A0000000000001ULL | ((uint64_t)address << 1);
     cfg->save_interval_ms = save_interval_ms;
@@ -27,7 +27,7 @@ void hal_ecu_loop_config(pfe_ecu_config_t *cfg, uint8_t address, uint32_t save_i
 int hal_ecu_loop_init(hal_ecu_loop_t *loop, pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg,
                       hal_can_t *can, hal_nvm_t *nvm, uint64_t now_us)
 {
-    memset(loop, 0, sizeof *loop);
+    (void)memset(loop, 0, sizeof *loop);
     loop->ecu = ecu;
     loop->can = can;
     loop->nvm = nvm;

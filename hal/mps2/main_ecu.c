@@ -116,7 +116,10 @@ int main(void)
         say("the ECU refuses this configuration", "", "");
         status = 2;
     } else {
-        uint64_t feed_total = 0U, feed_worst = 0U, tick_total = 0U, tick_worst = 0U;
+        uint64_t feed_total = 0U;
+        uint64_t feed_worst = 0U;
+        uint64_t tick_total = 0U;
+        uint64_t tick_worst = 0U;
         hal_mps2_icount_start();
         for (;;) {
             const uint64_t t0 = hal_mps2_icount_now();

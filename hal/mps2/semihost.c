@@ -43,11 +43,12 @@ void hal_mps2_write_str(const char *s)
 static char *format_u32(uint32_t value, char *buf_end)
 {
     char *p = buf_end;
+    uint32_t rest = value;
     do {
         --p;
-        *p = (char)('0' + (value % 10U));
-        value /= 10U;
-    } while (value != 0U);
+        *p = (char)('0' + (rest % 10U));
+        rest /= 10U;
+    } while (rest != 0U);
     return p;
 }
 
@@ -56,12 +57,13 @@ static char *format_u64(uint64_t value, char *buf_end)
     /* The 64-bit path costs a libgcc division per digit: take the 32-bit one
      * as soon as the value fits. */
     char *p = buf_end;
-    while (value > UINT32_MAX) {
+    uint64_t rest = value;
+    while (rest > UINT32_MAX) {
         --p;
-        *p = (char)('0' + (uint32_t)(value % 10U));
-        value /= 10U;
+        *p = (char)('0' + (uint32_t)(rest % 10U));
+        rest /= 10U;
     }
-    return format_u32((uint32_t)value, p);
+    return format_u32((uint32_t)rest, p);
 }
 
 void hal_mps2_write_u32(uint32_t value)
@@ -147,7 +149,11 @@ int32_t hal_mps2_file_read(int32_t handle, void *buf, uint32_t len)
     const uint32_t block[3] = {(uint32_t)handle, (uint32_t)(uintptr_t)buf, len};
     /* SYS_READ returns the number of bytes NOT read. */
     const uint32_t left = semihost_call(SYS_READ, block);
-    return (left > len) ? -1 : (int32_t)(len - left);
+    if (left > len) {
+        return -1;
+    }
+    const uint32_t got = len - left;
+    return (int32_t)got;
 }
 
 int32_t hal_mps2_file_write(int32_t handle, const void *buf, uint32_t len)

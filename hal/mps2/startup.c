@@ -58,7 +58,7 @@ void SysTick_Handler(void) __attribute__((weak, alias("hal_mps2_default_handler"
         hal_mps2_default_handler, hal_mps2_default_handler,              \
         hal_mps2_default_handler, hal_mps2_default_handler,              \
         hal_mps2_default_handler, hal_mps2_default_handler
-_Static_assert(EXTERNAL_IRQS == 4U * 8U, "one IRQ_DEFAULTS_8 per 8 interrupts");
+_Static_assert(EXTERNAL_IRQS == (4U * 8U), "one IRQ_DEFAULTS_8 per 8 interrupts");
 
 __attribute__((section(".isr_vector"), used))
 static const vector_table s_vectors = {

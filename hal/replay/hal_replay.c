@@ -23,7 +23,7 @@ static void record_write(hal_replay_bus_t *bus, const char *s, uint32_t n)
         }
         bus->out_len = 0U;
     }
-    memcpy(&bus->out[bus->out_len], s, n);
+    (void)memcpy(&bus->out[bus->out_len], s, n);
     bus->out_len += n;
 }
 
@@ -31,11 +31,12 @@ static void record_write(hal_replay_bus_t *bus, const char *s, uint32_t n)
 static char *put_u64(uint64_t v, char *end)
 {
     char *p = end;
+    uint64_t rest = v;
     do {
         --p;
-        *p = (char)('0' + (int)(v % 10U));
-        v /= 10U;
-    } while (v != 0U);
+        *p = (char)('0' + (int)(rest % 10U));
+        rest /= 10U;
+    } while (rest != 0U);
     return p;
 }
 
@@ -60,7 +61,7 @@ static void record_frame(hal_replay_bus_t *bus, const pfe_can_frame_t *f, uint64
     buf[n++] = '(';
     const char *sec = put_u64(t_us / 1000000U, &digits[20]);
     const uint32_t sec_len = (uint32_t)(&digits[20] - sec);
-    memcpy(&buf[n], sec, sec_len);
+    (void)memcpy(&buf[n], sec, sec_len);
     n += sec_len;
     buf[n++] = '.';
     uint32_t usec = (uint32_t)(t_us % 1000000U);
@@ -72,7 +73,7 @@ static void record_frame(hal_replay_bus_t *bus, const pfe_can_frame_t *f, uint64
     buf[n++] = ')';
     buf[n++] = ' ';
     const uint32_t if_len = (uint32_t)strlen(bus->ifname);
-    memcpy(&buf[n], bus->ifname, if_len);
+    (void)memcpy(&buf[n], bus->ifname, if_len);
     n += if_len;
     buf[n++] = ' ';
     if ((f->id & PFE_CAN_EFF_FLAG) != 0U) {
@@ -234,7 +235,7 @@ static line_kind_t parse_line(hal_replay_bus_t *bus, const char *s, pfe_can_fram
             *why = HAL_REPLAY_BAD_LENGTH;
             return LINE_BAD;
         }
-        f->data[len] = (uint8_t)((hi << 4) | lo);
+        f->data[len] = (uint8_t)(((uint32_t)hi << 4) | (uint32_t)lo);
         len++;
         i += 2U;
     }
@@ -249,7 +250,7 @@ static line_kind_t parse_line(hal_replay_bus_t *bus, const char *s, pfe_can_fram
     }
     *t_us = (sec * 1000000U) + usec;
     if (!bus->ifname_fixed && !bus->any_log_frame) {
-        memcpy(bus->ifname, &s[if_start], if_len);
+        (void)memcpy(bus->ifname, &s[if_start], if_len);
         bus->ifname[if_len] = '\0';
     }
     return LINE_FRAME;
@@ -351,7 +352,7 @@ static void load_next(hal_replay_bus_t *bus)
 void hal_replay_init(hal_replay_bus_t *bus, hal_replay_read_fn read, void *read_ctx,
                      hal_replay_write_fn write, void *write_ctx, const char *record_ifname)
 {
-    memset(bus, 0, sizeof *bus);
+    (void)memset(bus, 0, sizeof *bus);
     bus->time.bus = bus;
     bus->read = read;
     bus->read_ctx = read_ctx;
@@ -366,7 +367,7 @@ void hal_replay_init(hal_replay_bus_t *bus, hal_replay_read_fn read, void *read_
     if (len > HAL_REPLAY_IFNAME_MAX) {
         len = HAL_REPLAY_IFNAME_MAX;
     }
-    memcpy(bus->ifname, name, len);
+    (void)memcpy(bus->ifname, name, len);
     bus->ifname[len] = '\0';
     load_next(bus);
     if (bus->have_next) {
@@ -420,7 +421,7 @@ hal_can_t *hal_replay_open(hal_replay_bus_t *bus)
     for (uint32_t k = 0U; k < HAL_REPLAY_MAX_HANDLES; k++) {
         hal_can_t *h = &bus->handle[k];
         if (!h->open) {
-            memset(h, 0, sizeof *h);
+            (void)memset(h, 0, sizeof *h);
             h->bus = bus;
             h->open = true;
             hal_can_mem_port_init(&h->port, h->rx, HAL_REPLAY_RX_QUEUE);
@@ -522,7 +523,7 @@ void hal_can_get_stats(const hal_can_t *can, hal_can_stats_t *out)
 
 void hal_replay_nvm_init(hal_nvm_t *nvm)
 {
-    memset(nvm->slot, 0xFF, sizeof nvm->slot);
+    (void)memset(nvm->slot, 0xFF, sizeof nvm->slot);
     nvm->writes = 0U;
 }
 
@@ -531,7 +532,7 @@ int hal_nvm_read(hal_nvm_t *nvm, uint32_t slot, uint8_t buf[PFE_NVM_RECORD_SIZE]
     if ((nvm == NULL) || (slot >= PFE_NVM_SLOTS) || (buf == NULL)) {
         return HAL_EINVAL;
     }
-    memcpy(buf, nvm->slot[slot], PFE_NVM_RECORD_SIZE);
+    (void)memcpy(buf, nvm->slot[slot], PFE_NVM_RECORD_SIZE);
     return 0;
 }
 
@@ -540,7 +541,7 @@ int hal_nvm_write(hal_nvm_t *nvm, uint32_t slot, const uint8_t buf[PFE_NVM_RECOR
     if ((nvm == NULL) || (slot >= PFE_NVM_SLOTS) || (buf == NULL)) {
         return HAL_EINVAL;
     }
-    memcpy(nvm->slot[slot], buf, PFE_NVM_RECORD_SIZE);
+    (void)memcpy(nvm->slot[slot], buf, PFE_NVM_RECORD_SIZE);
     nvm->writes++;
     return 0;
 }

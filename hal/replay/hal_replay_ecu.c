@@ -10,7 +10,7 @@
 int hal_replay_ecu_init(hal_replay_ecu_t *run, hal_replay_read_fn read, void *read_ctx,
                         hal_replay_write_fn write, void *write_ctx, const pfe_ecu_config_t *cfg)
 {
-    memset(run, 0, sizeof *run);
+    (void)memset(run, 0, sizeof *run);
     hal_replay_init(&run->bus, read, read_ctx, write, write_ctx, NULL);
     hal_replay_nvm_init(&run->nvm);
     uint64_t first_us = 0U;
@@ -69,16 +69,17 @@ static void put_str(char *buf, uint32_t cap, uint32_t *n, const char *s)
     }
 }
 
-static void put_u64(char *buf, uint32_t cap, uint32_t *n, uint64_t v)
+static void put_dec_u64(char *buf, uint32_t cap, uint32_t *n, uint64_t v)
 {
     char digits[21];
     char *p = &digits[20];
+    uint64_t rest = v;
     *p = '\0';
     do {
         --p;
-        *p = (char)('0' + (int)(v % 10U));
-        v /= 10U;
-    } while (v != 0U);
+        *p = (char)('0' + (int)(rest % 10U));
+        rest /= 10U;
+    } while (rest != 0U);
     put_str(buf, cap, n, p);
 }
 
@@ -87,7 +88,7 @@ static void put_field(char *buf, uint32_t cap, uint32_t *n, const char *name, ui
     put_str(buf, cap, n, " ");
     put_str(buf, cap, n, name);
     put_str(buf, cap, n, " ");
-    put_u64(buf, cap, n, v);
+    put_dec_u64(buf, cap, n, v);
 }
 
 uint32_t hal_replay_ecu_summary(const hal_replay_ecu_t *run, char *buf, uint32_t cap)
@@ -117,12 +118,13 @@ uint32_t hal_replay_ecu_summary(const hal_replay_ecu_t *run, char *buf, uint32_t
 }
 
 /* Decimal, or hex after "0x": 0 and *out within lo .. hi, else -1. */
-static int parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
+static int parse_u32(const char *text, uint32_t lo, uint32_t hi, uint32_t *out)
 {
+    const char *s = text;
     uint32_t base = 10U;
     if ((s[0] == '0') && ((s[1] == 'x') || (s[1] == 'X'))) {
         base = 16U;
-        s += 2;
+        s = &text[2];
     }
     if (*s == '\0') {
         return -1;
@@ -168,8 +170,11 @@ static int arg_error(char *err, uint32_t cap, const char *what, const char *arg)
 int hal_replay_ecu_args(int argc, char *const argv[], hal_replay_ecu_args_t *out, char *err,
                         uint32_t cap)
 {
-    uint32_t address = PFE_ECU_DEFAULT_ADDRESS, interval_ms = 10000U, vehicles = 1U;
-    uint32_t position = 0U, gap_cm = 1000U;
+    uint32_t address = PFE_ECU_DEFAULT_ADDRESS;
+    uint32_t interval_ms = 10000U;
+    uint32_t vehicles = 1U;
+    uint32_t position = 0U;
+    uint32_t gap_cm = 1000U;
     out->log_path = NULL;
     out->record_path = NULL;
     for (int i = 1; i < argc; i += 2) {

@@ -1,0 +1,56 @@
+#!/bin/sh
+# Shows that the worst-case stack check can fail: run exactly as `make
+# stack-check` runs it, it must refuse
+#   1. the ECU image when no indirect call has its targets listed,
+#   2. a call graph with a cycle (an edge from a leaf back to main added to
+#      the self-check image's graph),
+# and fail
+#   3. the self-check image linked with a 512-byte stack
+#      (STACK_OUT/small/pfe_mps2.elf), which its worst case exceeds.
+#
+#   tests/stack/refusals.sh STACK_OUT M4_OUT CHECK_COMMAND...
+#
+# CHECK_COMMAND is scripts/stack_check.py with its --indirect option.
+
+set -u
+
+out=$1
+m4=$2
+shift 2
+tmp=${TMPDIR:-/tmp}/stack_refusals.$$
+mkdir -p "$tmp"
+trap 'rm -rf "$tmp"' EXIT
+
+# expect NAME PATTERN COMMAND...: COMMAND exits 1 and prints PATTERN.
+expect() {
+    name=$1
+    pattern=$2
+    shift 2
+    "$@" >"$tmp/out" 2>&1
+    rc=$?
+    if [ "$rc" -ne 1 ] || ! grep -q "$pattern" "$tmp/out"; then
+        cat "$tmp/out"
+        echo "stack-refusals: $name: expected exit 1 and \"$pattern\", got exit $rc"
+        exit 1
+    fi
+    echo "stack-refusals: $name: $(grep -m1 "$pattern" "$tmp/out" | sed 's/^stack: //')"
+}
+
+# 1. The same check with an empty list of indirect targets.
+: >"$tmp/none.txt"
+expect "no indirect targets" "refused: indirect call at hal/replay/hal_replay.c" \
+    "$@" --indirect "$tmp/none.txt" --elf "$m4/pfe_ecu_mps2.elf" \
+    --ci "$out"/pfe_ecu_mps2/*.ci
+
+# 2. Recursion: line_u64 calls main again.
+ci=$(ls "$out"/pfe_mps2/*.ci)
+prefix=$(sed -n 's/^node: { title: "\([^"]*:\)main".*/\1/p' "$ci")
+cp "$ci" "$tmp/cycle.ci"
+echo "edge: { sourcename: \"${prefix}line_u64\" targetname: \"${prefix}main\" }" >>"$tmp/cycle.ci"
+expect "recursion" "refused: recursion: .*main > line_u64 > main" \
+    "$@" --elf "$m4/pfe_mps2.elf" --ci "$tmp/cycle.ci"
+
+# 3. A stack smaller than the worst case.
+expect "512-byte stack" "FAILED: the worst case exceeds the stack" \
+    "$@" --elf "$out/small/pfe_mps2.elf" --ci "$out"/small/*.ci
+echo "stack-refusals: the check refuses or fails in all three cases, as it should"
