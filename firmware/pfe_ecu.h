@@ -146,6 +146,18 @@ typedef struct {
     pfe_ecu_counters_t count;
 } pfe_ecu_t;
 
+/* The frames the ECU reads, as CAN filters (hal_can_add_filter()): a frame
+ * is for the ECU when (id & mask) == (filter id & mask) for one of them. The
+ * J1939 PGN with priority and source masked, and for the PDU1 PGNs
+ * (request, address claimed) the destination too. A HAL that installs them
+ * keeps other traffic from costing the ECU anything. */
+#define PFE_ECU_RX_FILTERS 6U
+typedef struct {
+    uint32_t id;
+    uint32_t mask;
+} pfe_ecu_filter_t;
+extern const pfe_ecu_filter_t pfe_ecu_rx_filters[PFE_ECU_RX_FILTERS];
+
 /*
  * Starts the ECU at now_us: claims cfg->preferred_address, restores fuel
  * totals from `restored` (NULL or the result of pfe_nvm_pick(), whose slot

@@ -36,6 +36,19 @@ int hal_ecu_loop_init(hal_ecu_loop_t *loop, pfe_ecu_t *ecu, const pfe_ecu_config
     const bool ok0 = hal_nvm_read(nvm, 0U, s0) == 0;
     const bool ok1 = hal_nvm_read(nvm, 1U, s1) == 0;
     loop->restored_slot = pfe_nvm_pick(ok0 ? s0 : NULL, ok1 ? s1 : NULL, &loop->restored);
+    /* A backend without filter slots for all of them gets none (it then
+     * passes everything, and the ECU sorts). */
+    for (uint32_t k = 0U; k < PFE_ECU_RX_FILTERS; k++) {
+        if (hal_can_add_filter(can, pfe_ecu_rx_filters[k].id, pfe_ecu_rx_filters[k].mask) >= 0) {
+            loop->filters++;
+        }
+    }
+    if (loop->filters != PFE_ECU_RX_FILTERS) {
+        for (int k = 0; k < (int)HAL_CAN_MAX_FILTERS; k++) {
+            (void)hal_can_remove_filter(can, k);
+        }
+        loop->filters = 0U;
+    }
     hal_can_get_stats(can, &loop->last);
     return pfe_ecu_init(ecu, cfg, &loop->restored, loop->restored_slot, now_us);
 }
@@ -44,7 +57,7 @@ uint32_t hal_ecu_loop_step(hal_ecu_loop_t *loop, uint64_t now_us)
 {
     pfe_ecu_t *ecu = loop->ecu;
     hal_can_rx_t rx;
-    while (hal_can_receive(loop->can, &rx) == 0) {
+    for (uint32_t k = 0U; (k < HAL_ECU_LOOP_RX_MAX) && (hal_can_receive(loop->can, &rx) == 0); k++) {
         pfe_ecu_receive(ecu, &rx.frame, now_us);
     }
     hal_can_stats_t st;

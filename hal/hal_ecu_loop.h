@@ -5,9 +5,13 @@
  * (hal/mps2/main_ecu.c). Because they share this code, a replay on the host
  * and on the Cortex-M4 must send the same frames.
  *
+ * hal_ecu_loop_init() installs the ECU's receive filters
+ * (pfe_ecu_rx_filters) on the handle, so that other traffic stays out.
  * One pass, hal_ecu_loop_step(), at each 10 ms deadline:
- *   1. every frame waiting on the CAN handle goes into the ECU, stamped with
- *      the deadline (the ECU's clock; backends' receive clocks may differ);
+ *   1. the frames waiting on the CAN handle go into the ECU, stamped with
+ *      the deadline (the ECU's clock; backends' receive clocks may differ),
+ *      at most HAL_ECU_LOOP_RX_MAX of them: a flood cannot hold the tick (the
+ *      rest waits, and what the backend then drops is counted);
  *   2. frames the backend dropped since the last pass are reported;
  *   3. the ECU ticks; what it sends goes to the handle, refusals are
  *      reported as transmit drops;
@@ -23,6 +27,8 @@
 #include "hal/hal_can.h"
 #include "hal/hal_nvm.h"
 
+#define HAL_ECU_LOOP_RX_MAX (2U * PFE_ECU_RX_QUEUE_LEN)
+
 typedef struct {
     pfe_ecu_t *ecu;
     hal_can_t *can;
@@ -30,6 +36,7 @@ typedef struct {
     hal_can_stats_t last;              /* backend counters at the previous pass */
     uint32_t nvm_failures;             /* saves the backend refused */
     int restored_slot;                 /* NVM slot restored from, -1 for none */
+    uint32_t filters;                  /* receive filters the backend took */
     pfe_nvm_state_t restored;          /* totals restored at start-up */
 } hal_ecu_loop_t;
 

@@ -447,6 +447,37 @@ static void test_prediction_over_a_preview(void **state)
     assert_int_equal(p.fuel_ul.state, PFE_SIG_NOT_AVAILABLE);
 }
 
+static bool passes_filters(uint32_t id)
+{
+    for (uint32_t k = 0U; k < PFE_ECU_RX_FILTERS; k++) {
+        if ((id & pfe_ecu_rx_filters[k].mask) ==
+            (pfe_ecu_rx_filters[k].id & pfe_ecu_rx_filters[k].mask)) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* The receive filters: the ECU's own inputs from any source and priority,
+ * requests and claims to any destination; nothing else. */
+static void test_receive_filters(void **state)
+{
+    (void)state;
+    assert_true(passes_filters(0x98FEF100UL));  /* CCVS1, priority 6, source 0x00 */
+    assert_true(passes_filters(0x8CFEF1FEUL));  /* CCVS1, priority 3, source 0xFE */
+    assert_true(passes_filters(0x8CF01313UL));  /* SSI */
+    assert_true(passes_filters(0x98FF0017UL));  /* PFE_PlatoonConfig */
+    assert_true(passes_filters(0x98FF0133UL));  /* PFE_GradePreview */
+    assert_true(passes_filters(0x98EA8C00UL));  /* Request to 0x8C */
+    assert_true(passes_filters(0x98EAFF00UL));  /* Request to all */
+    assert_true(passes_filters(0x98EEFF10UL));  /* Address Claimed */
+    assert_false(passes_filters(0x98FEF200UL)); /* LFE1: an output */
+    assert_false(passes_filters(0x98FF0400UL)); /* PFE_Status: an output */
+    assert_false(passes_filters(0x18FEF100UL)); /* no EFF flag: an 11-bit id */
+    assert_false(passes_filters(0x000007FFUL)); /* 11-bit */
+    assert_false(passes_filters(0x99FEF100UL)); /* CCVS1 in data page 1: another PGN */
+}
+
 static void test_platoon_config_switches_the_model(void **state)
 {
     (void)state;
@@ -545,6 +576,7 @@ int main(void)
         cmocka_unit_test(test_requests),
         cmocka_unit_test(test_address_claim_conflicts),
         cmocka_unit_test(test_counters_reach_the_status_message),
+        cmocka_unit_test(test_receive_filters),
         cmocka_unit_test(test_platoon_config_switches_the_model),
         cmocka_unit_test(test_prediction_over_a_preview),
         cmocka_unit_test(test_resets_never_lose_more_than_one_save_interval),
