@@ -32,7 +32,7 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
 .PHONY: all tools deps run test test-host test-m4 firmware bench help clean check-image \
-        check-selfcheck check-replay e2e-test
+        check-selfcheck check-replay e2e-test bus-fault-test
 .DEFAULT_GOAL := all
 
 all: tools
@@ -241,6 +241,32 @@ $(E2E_PAYLOAD)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/ha
 $(E2E_PAYLOAD)/faults.log: $(HOST)/pfe_faults $(E2E_PAYLOAD)/drive.log
 	$(HOST)/pfe_faults inject $(E2E_PAYLOAD)/drive.log $@
 
+# Bus faults in the real kernel: vcan0 down and up, a flood, an address
+# conflict, during a drive (tests/e2e/bus_faults.sh).
+FAULTS_PAYLOAD := $(BUILD)/bus-faults/payload
+$(FAULTS_PAYLOAD)/pfe_ecu: $(E2E_PAYLOAD)/pfe_ecu
+	@mkdir -p $(@D)
+	cp $< $@
+$(FAULTS_PAYLOAD)/pfe_replay: $(REPLAY_PAYLOAD)/pfe_replay
+	@mkdir -p $(@D)
+	cp $< $@
+$(FAULTS_PAYLOAD)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) sim_host/dbc.c sim_host/dbc.h | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(WARN) $(E2E_STATIC) -Wno-maybe-uninitialized -I. -o $@ $(DECODE_SRC) sim_host/dbc.c -lm
+$(FAULTS_PAYLOAD)/pfe.dbc: can_dbc/pfe.dbc
+	@mkdir -p $(@D)
+	cp $< $@
+$(FAULTS_PAYLOAD)/drive.log: $(E2E_PAYLOAD)/drive.log
+	@mkdir -p $(@D)
+	cp $< $@
+$(FAULTS_PAYLOAD)/bus_faults.sh: tests/e2e/bus_faults.sh
+	@mkdir -p $(@D)
+	cp $< $@
+
+bus-fault-test: $(addprefix $(FAULTS_PAYLOAD)/,pfe_ecu pfe_replay pfe_decode pfe.dbc drive.log bus_faults.sh)
+	$(VCAN_VM) --time --timeout 300 --payload $(abspath $(FAULTS_PAYLOAD)) -- \
+	    sh $(abspath $(FAULTS_PAYLOAD))/bus_faults.sh
+
 e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log faults.log ecu_vcan.sh)
 	$(VCAN_VM) --time --timeout 500 --payload $(abspath $(E2E_PAYLOAD)) -- \
 	    sh $(abspath $(E2E_PAYLOAD))/ecu_vcan.sh
@@ -261,7 +287,7 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
       test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
-      thesis-test test-hardening
+      thesis-test test-hardening bus-fault-test
 
 # ---------------------------------------------------------------- benchmarks
 

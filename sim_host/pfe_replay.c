@@ -77,7 +77,8 @@
  *
  * At the end (also after Ctrl-C), a summary on standard error: frames sent,
  * written to standard output, skipped (filters, --start, unassigned or
- * unknown interfaces), dropped (transmit queue full), parse errors by reason
+ * unknown interfaces), dropped (transmit queue full, or the interface down),
+ * parse errors by reason
  * with the first of each, and lateness p50 / p99 / max. While it runs, a
  * progress line on standard error when that is a terminal.
  *
@@ -88,7 +89,8 @@
  *      --skip-errors), no such interface, a socket error
  *   2  refused: an interface that is not virtual CAN, without --allow-real-bus
  *   3  usage error
- *   4  done, but frames were dropped (transmit queue full beyond --tx-wait-ms)
+ *   4  done, but frames were dropped (transmit queue full beyond --tx-wait-ms,
+ *      or the interface down: counted, the run goes on)
  *   130  stopped by SIGINT or SIGTERM (the summary is printed)
  */
 #define _GNU_SOURCE /* clock_nanosleep, sigaction */
@@ -183,6 +185,7 @@ typedef struct {
     uint64_t written;
     uint64_t skipped;
     uint64_t dropped;
+    uint64_t dropped_down;  /* of dropped: the interface was down */
     lateness_hist_t late;
 } replay_t;
 
@@ -531,6 +534,16 @@ static int send_frame(replay_t *rp, const target_t *t, const canlog_frame_t *f)
             }
             continue;
         }
+        if (errno == ENETDOWN) {
+            /* The interface is down (it may come back): the frame is lost
+             * like one that found the queue full, and the run goes on. */
+            if (rp->dropped_down == 0U) {
+                fprintf(stderr, "pfe_replay: %s is down (line %llu): dropping frames until it is up\n",
+                        t->tx_if, (unsigned long long)f->line);
+            }
+            rp->dropped_down++;
+            return 0;
+        }
         if ((errno != ENOBUFS) && (errno != EAGAIN)) {
             fprintf(stderr, "pfe_replay: send on %s failed (line %llu): %s\n", t->tx_if,
                     (unsigned long long)f->line, strerror(errno));
@@ -714,10 +727,11 @@ static int run_pass(replay_t *rp, canlog_reader_t *r)
 static void summary(const replay_t *rp, const canlog_reader_t *r, double elapsed_s)
 {
     fprintf(stderr,
-            "pfe_replay: %llu sent, %llu written to stdout, %llu skipped, %llu dropped, "
-            "%llu parse errors (%llu line%s, %lu pass%s, %.1f s)\n",
+            "pfe_replay: %llu sent, %llu written to stdout, %llu skipped, %llu dropped (%llu with "
+            "the interface down), %llu parse errors (%llu line%s, %lu pass%s, %.1f s)\n",
             (unsigned long long)rp->sent, (unsigned long long)rp->written,
             (unsigned long long)rp->skipped, (unsigned long long)rp->dropped,
+            (unsigned long long)rp->dropped_down,
             (unsigned long long)r->error_lines, (unsigned long long)r->lines,
             (r->lines == 1U) ? "" : "s", rp->pass,
             (rp->pass == 1U) ? "" : "es", elapsed_s);
