@@ -27,6 +27,11 @@ static void count_up(uint32_t *c, uint32_t n)
 
 static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
 {
+    /* Totals carry over a change of platoon: the own truck's to its new
+     * position. Read before the platoon changes: the estimator reads a
+     * position's total only below the platoon's size. */
+    const uint64_t own = pfe_ecu_own_fuel_ul(ecu);
+    const uint64_t platoon = pfe_ecu_platoon_fuel_ul(ecu);
     pfe_platoon_config_t pc;
     pfe_platoon_config_uniform(&pc, n, gap_mm, ecu->cfg.vehicle, ecu->cfg.env, ecu->cfg.drag);
     if ((pc.n_vehicles != n) || (position >= n) || (pfe_platoon_init(&ecu->platoon, &pc) != PFE_OK)) {
@@ -34,9 +39,6 @@ static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap
     }
     /* The prediction in progress was for the old platoon. */
     pfe_predict_cancel(&ecu->predict);
-    /* Totals carry over a change of platoon: the own truck's to its new position. */
-    const uint64_t own = pfe_ecu_own_fuel_ul(ecu);
-    const uint64_t platoon = pfe_ecu_platoon_fuel_ul(ecu);
     (void)pfe_estimator_init(&ecu->est, &ecu->platoon);
     ecu->own_position = position;
     (void)pfe_estimator_set_fuel_used_ul(&ecu->est, (int32_t)position, own);
