@@ -32,7 +32,8 @@
  * Invariants (abort on failure): a tick sends at most its capacity and at
  * most PFE_ECU_TX_MAX frames; every frame sent is one of the module's
  * outputs, 29-bit, with its DBC length, from its address, and decodes;
- * HRLFC carries the own truck's total rounded to 0.001 L (or its limit);
+ * HRLFC carries the own truck's total rounded to 0.001 L (or its limit,
+ * and then every status after it says OutputSaturated);
  * a prediction sent lies within its own bounds;
  * total fuel (own truck and platoon) never decreases between resets, and a
  * reset restores exactly the last record saved; every NVM record decodes
@@ -70,6 +71,7 @@ typedef struct {
     pfe_nvm_state_t saved;     /* the last record written */
     uint16_t auto_speed_raw;
     uint16_t auto_pitch_raw;
+    bool hrlfc_clamped;        /* an HRLFC went out clamped since the start */
 } fz_t;
 
 static fz_t g;
@@ -80,7 +82,7 @@ static void receive(fz_t *z, const pfe_can_frame_t *f)
     pfe_ecu_receive(&z->ecu, f, z->now_us);
 }
 
-static void check_output(const fz_t *z, const pfe_can_frame_t *f)
+static void check_output(fz_t *z, const pfe_can_frame_t *f)
 {
     FUZZ_CHECK((f->id & PFE_CAN_EFF_FLAG) != 0U);
     FUZZ_CHECK(f->dlc <= PFE_CAN_MAX_DLC);
@@ -111,6 +113,7 @@ static void check_output(const fz_t *z, const pfe_can_frame_t *f)
         const uint64_t own = pfe_ecu_own_fuel_ul(&z->ecu);
         const uint64_t rounded = ((own / 1000U) + (((own % 1000U) >= 500U) ? 1U : 0U)) * 1000U;
         FUZZ_CHECK(d.total_fuel_ul.value == ((rounded < HRLFC_MAX_UL) ? rounded : HRLFC_MAX_UL));
+        z->hrlfc_clamped = z->hrlfc_clamped || (rounded > HRLFC_MAX_UL);
     } else if (pgn == PFE_PGN_FUEL_PREDICTION) {
         pfe_msg_fuel_prediction_t d;
         FUZZ_CHECK(pfe_codec_decode_fuel_prediction(f, &d) >= 0);
@@ -129,6 +132,9 @@ static void check_output(const fz_t *z, const pfe_can_frame_t *f)
     } else if (pgn == PFE_PGN_STATUS) {
         pfe_msg_status_t d;
         FUZZ_CHECK(pfe_codec_decode_status(f, &d) >= 0);
+        /* A total clamped on the wire stays clamped (it never decreases),
+         * and the status says so. */
+        FUZZ_CHECK(!z->hrlfc_clamped || (d.output_saturated.value == 1U));
     } else {
         FUZZ_CHECK(false); /* not an output */
     }
@@ -320,6 +326,7 @@ static void op_run(fz_t *z, fuzz_in_t *in, uint32_t p)
 static void start(fz_t *z, const pfe_nvm_state_t *restored, int slot)
 {
     FUZZ_CHECK(pfe_ecu_init(&z->ecu, &z->cfg, restored, slot, z->now_us) == PFE_OK);
+    z->hrlfc_clamped = false;
     z->own_ul = pfe_ecu_own_fuel_ul(&z->ecu);
     z->platoon_ul = pfe_ecu_platoon_fuel_ul(&z->ecu);
 }
