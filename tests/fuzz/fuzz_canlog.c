@@ -113,7 +113,9 @@ static uint64_t pass(canlog_reader_t *r, size_t size, bool stop_mode, uint64_t *
         const uint64_t fields[5] = {f.time_us, f.line, f.id, ((uint64_t)f.len << 8) | f.fd_flags,
                                     ((uint64_t)f.fd << 8) | (uint8_t)f.dir};
         const uint8_t *bytes[3] = {(const uint8_t *)fields, f.data, (const uint8_t *)f.iface};
-        const size_t lens[3] = {sizeof fields, f.len, strlen(f.iface)};
+        /* A remote frame's data bytes are not written (canlog.h). */
+        const bool remote = ((f.id & CANLOG_RTR_FLAG) != 0U) && !f.fd;
+        const size_t lens[3] = {sizeof fields, remote ? 0U : f.len, strlen(f.iface)};
         for (uint32_t k = 0U; k < 3U; k++) {
             for (size_t i = 0U; i < lens[k]; i++) {
                 digest = (digest ^ bytes[k][i]) * 1099511628211ULL;
