@@ -39,6 +39,11 @@ static void count_up(uint32_t *c, uint32_t n)
 
 static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
 {
+    /* Totals carry over a change of platoon: the own truck's to its new
+     * position. Read before the platoon changes: the estimator reads a
+     * position's total only below the platoon's size. */
+    const uint64_t own = pfe_ecu_own_fuel_ul(ecu);
+    const uint64_t platoon = pfe_ecu_platoon_fuel_ul(ecu);
     pfe_platoon_config_t pc;
     pfe_platoon_config_uniform(&pc, n, gap_mm, ecu->cfg.vehicle, ecu->cfg.env, ecu->cfg.drag);
     if ((pc.n_vehicles != n) || (position >= n) || (pfe_platoon_init(&ecu->platoon, &pc) != PFE_OK)) {
@@ -46,9 +51,6 @@ static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap
     }
     /* The prediction in progress was for the old platoon. */
     pfe_predict_cancel(&ecu->predict);
-    /* Totals carry over a change of platoon: the own truck's to its new position. */
-    const uint64_t own = pfe_ecu_own_fuel_ul(ecu);
-    const uint64_t platoon = pfe_ecu_platoon_fuel_ul(ecu);
     (void)pfe_estimator_init(&ecu->est, &ecu->platoon);
     ecu->own_position = position;
     (void)pfe_estimator_set_fuel_used_ul(&ecu->est, (int32_t)position, own);
@@ -245,6 +247,7 @@ static void on_frame(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
         }
         bool saturated = false;
         ecu->grade_ppm = pfe_codec_grade_ppm_from_pitch(m.pitch_udeg.value, &saturated);
+        ecu->grade_saturated = saturated;
         input_update(&ecu->grade, m.pitch_udeg.state, rx_us);
     } else if (pgn == PFE_PGN_PLATOON_CONFIG) {
         on_platoon_config(ecu, f, rx_us);
@@ -381,11 +384,24 @@ static void encode_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f)
         m.tx_frames_dropped = sig_u32(clamp_counter(ecu->count.tx_dropped), true);
         m.warming_up = sig_u32(((flags & PFE_EST_WARMING_UP) != 0U) ? 1U : 0U, true);
         m.speed_clamped = sig_u32(((flags & PFE_EST_SPEED_CLAMPED) != 0U) ? 1U : 0U, true);
-        m.grade_clamped = sig_u32(((flags & PFE_EST_GRADE_CLAMPED) != 0U) ? 1U : 0U, true);
-        m.output_saturated = sig_u32(((flags & PFE_EST_SATURATED) != 0U) ? 1U : 0U, true);
+        /* The pitch's grade saturates before the estimator sees it. */
+        const bool grade_clamped = ((flags & PFE_EST_GRADE_CLAMPED) != 0U) ||
+                                   (ecu->grade_saturated && (ecu->grade.state == PFE_SIG_VALID));
+        m.grade_clamped = sig_u32(grade_clamped ? 1U : 0U, true);
+        const bool saturated = ((flags & PFE_EST_SATURATED) != 0U) || (ecu->outputs_clamped != 0U);
+        m.output_saturated = sig_u32(saturated ? 1U : 0U, true);
         r = pfe_codec_encode_status(f, &m, sa);
     }
-    (void)r; /* clamping is reported in PFE_Status through the estimator flags */
+    /* An encoder returns the signals it clamped: the status says so until
+     * that output's next frame goes out unclamped. The status's own
+     * counters are clamped before encoding. */
+    if (which != OUT_STATUS) {
+        if (r > 0) {
+            ecu->outputs_clamped |= 1U << which;
+        } else {
+            ecu->outputs_clamped &= ~(1U << which);
+        }
+    }
 }
 
 static uint32_t emit(pfe_ecu_t *ecu, pfe_can_frame_t *tx, uint32_t n, uint32_t cap,

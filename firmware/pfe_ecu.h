@@ -18,7 +18,12 @@
  *      in progress, and PFE_FuelPrediction sends the latest (not available
  *      without one, or when it is older than PFE_ECU_PREDICT_MAX_AGE_US).
  * The main loop reports what it saw go wrong (ticks overrun, frames it could
- * not send or that the bus dropped); the status message carries it.
+ * not send or that the bus dropped); the status message carries it. It also
+ * says when a value was clamped: GradeClamped for a pitch beyond
+ * +-PFE_GRADE_MAX_PPM (as the estimator's own clamp), OutputSaturated for
+ * an estimator total or rate at its limit and for an output whose last
+ * frame the codec clamped to its signal's range (a total above 4211081.215
+ * L, a rate above 3212.75 L/h, a prediction above 642.55 L or 6425.5 s).
  *
  * Total fuel used survives a reset through two NVM slots (pfe_nvm.h): the
  * main loop reads them before pfe_ecu_init(), and writes
@@ -121,6 +126,7 @@ typedef struct {
     pfe_ecu_input_t preview;
     int32_t speed_mm_s;
     int32_t grade_ppm;
+    bool grade_saturated;              /* the last pitch was beyond +-PFE_GRADE_MAX_PPM */
     pfe_msg_platoon_config_t platoon_msg;
     pfe_preview_t preview_buf;
     /* model */
@@ -143,6 +149,7 @@ typedef struct {
     uint64_t last_save_us;
     uint32_t nvm_sequence;
     int nvm_last_slot;
+    uint32_t outputs_clamped;          /* bit per output whose last frame the codec clamped */
     pfe_ecu_counters_t count;
 } pfe_ecu_t;
 

@@ -9,7 +9,7 @@
  *   fuel_upper = [sum over the steps of the FAST run with Fw > 0 of
  *                 (Fa_upper(v_max) + Fr + M g alpha_l) ds] / (eta_min rho_d)
  *                + aux / (eta_min rho_d) + dKE / (eta_min rho_d)
- *   (each at least 0)
+ *   (each at least 0, and never across the prediction, see publish())
  *
  *   - speed trajectories (5.5, 5.7): v_min is the SLOW run, the object model
  *     with every truck given the largest drag area and no drag reduction;
@@ -26,12 +26,15 @@
  *   - auxiliary power is not bounded (the thesis: the same in both models):
  *     the nominal run's auxiliary energy, with each bound's efficiency;
  *   - the acceleration work (5.2) is the nominal run's change of kinetic
- *     energy, dKE = M (v_end^2 - v_start^2) / 2, in both bounds. The thesis
+ *     energy, dKE = m (v_end^2 - v_start^2) / 2, in both bounds. The thesis
  *     (5.3) sets it to zero because its routes start and end at the set
  *     speed, where this is zero too; a horizon that ends in a climb ends
  *     slower, and the energy the platoon gives back would otherwise push
- *     the prediction below the lower bound. (M without the rotating mass
- *     mj: a few percent of a small term.)
+ *     the prediction below the lower bound. The nominal fuel counts this
+ *     work with the rotating parts, (M + Mj) a (eq. 3.7), so m is M or
+ *     M + Mj, whichever keeps the bound a bound: the lower bound takes the
+ *     smaller term (M when the platoon gains speed, M + Mj when it loses
+ *     it), the upper bound the larger.
  * The step work is summed by pfe_sim itself (pfe_sim_sums_t), in N * 2^2
  * and nL as its own fuel.
  */
@@ -257,35 +260,56 @@ static uint32_t window_extremes(pfe_predict_t *p, bool upper, uint32_t count)
     return compared;
 }
 
-/* M (v_end^2 - v_start^2) / 2 as fuel at fq [nL/mJ * 2^20]: in mJ it is
- * M [kg] * dv2 [(mm/s)^2] / 2000, |M dv2| < 3.2e6 * 4.9e9 < 2^54, so the
- * quotient is below 2^43 and, shifted by 2^-4, times fq < 2^22 below 2^61. */
-static int64_t kinetic_nl(const pfe_predict_t *p, int64_t fq)
+/* m (v_end^2 - v_start^2) / 2 as fuel at fq [nL/mJ * 2^20], m = M or
+ * M + Mj as the bound needs (see the top): in mJ it is m [kg] * dv2
+ * [(mm/s)^2] / 2000, m < 6.4e6 kg (M + Mj <= 2 M) and |dv2| < 4.9e9, so
+ * |m dv2| < 2^55, the quotient is below 2^44 and, shifted by 2^-4, times
+ * fq < 2^22 below 2^62. M + Mj comes from the object's Q32 mass, to the
+ * kilogram. */
+static int64_t kinetic_nl(const pfe_predict_t *p, int64_t fq, bool upper)
 {
     const int64_t v1 = p->nominal_end_speed_mm_s;
     const int64_t v0 = p->start_speed_mm_s;
     const int64_t dv2 = (v1 * v1) - (v0 * v0);
-    const int64_t ke_mj = ((int64_t)p->platoon->mass_kg * dv2) / 2000;
+    /* kg * 2^32 / 10^6 = kg * 2^26 / 5^6 (pfe_vehicle.c), back to kg */
+    const uint64_t mass_fuel_kg =
+        pfe_udiv_round_u64((uint64_t)p->platoon->object.mass_fuel_q32 * 15625U, (uint64_t)1 << 26);
+    const int64_t mass_kg = ((dv2 >= 0) == upper) ? (int64_t)mass_fuel_kg
+                                                   : (int64_t)p->platoon->mass_kg;
+    const int64_t ke_mj = (mass_kg * dv2) / 2000;
     return pfe_rshift_round(pfe_rshift_round(ke_mj, 4U) * fq, 16U);
 }
 
-/* The nominal run's auxiliary fuel at another efficiency: aux * fq / fq_nominal.
- * aux < 2^40 (a million litres) times fq < 2^22: below 2^62. */
+/* The nominal run's auxiliary fuel at another efficiency: aux * fq /
+ * fq_nominal, rounded, for any aux: (aux / fq_nominal) * fq plus the
+ * remainder's share. fq_nominal >= 2^14 (eta 1, rho_d 60000 J/mL) and fq
+ * < 2^22 keep both products below 2^63 for aux below 2^55 nL (36 million
+ * litres: 3.2 MW of auxiliaries for 250000 s, the longest preview at the
+ * stall speed, at the lowest efficiency and energy density, is 1.6 million). */
 static int64_t aux_nl(const pfe_predict_t *p, int64_t fq)
 {
     const uint64_t fq_nominal = (uint64_t)p->platoon->object.fuel_q20;
-    const uint64_t aux = (p->nominal_aux_nl < ((uint64_t)1 << 40)) ? p->nominal_aux_nl
-                                                                     : ((uint64_t)1 << 40);
-    return (int64_t)pfe_udiv_round_u64(aux * (uint64_t)fq, (fq_nominal > 0U) ? fq_nominal : 1U);
+    uint64_t rem = 0U;
+    const uint64_t whole = pfe_udiv_u64(p->nominal_aux_nl, fq_nominal, &rem);
+    return (int64_t)((whole * (uint64_t)fq) + pfe_udiv_round_u64(rem * (uint64_t)fq, fq_nominal));
 }
 
 static void publish(pfe_predict_t *p)
 {
     pfe_predict_result_t *r = &p->result;
     const int64_t upper_nl = p->sums.bound_nl + aux_nl(p, p->fuel_upper_q20) +
-                             kinetic_nl(p, p->fuel_upper_q20);
-    const uint64_t lower = (p->lower_nl > 0) ? (uint64_t)p->lower_nl : 0U;
-    const uint64_t upper = (upper_nl > 0) ? (uint64_t)upper_nl : 0U;
+                             kinetic_nl(p, p->fuel_upper_q20, true);
+    /* Each bound at least 0, and never across the prediction. The bounds'
+     * simplifications can put one on the wrong side of the nominal fuel:
+     * the kinetic term counted whole while the nominal run's fuel cut
+     * leaves the speed gained downhill to gravity (a long descent: nominal
+     * 0, lower bound > 0), the runs' discretisation (Euler steps, the cut
+     * decided per step: a few ppm). Widening a bound to the prediction
+     * keeps it a bound. */
+    uint64_t lower = (p->lower_nl > 0) ? (uint64_t)p->lower_nl : 0U;
+    uint64_t upper = (upper_nl > 0) ? (uint64_t)upper_nl : 0U;
+    lower = (lower < p->nominal_fuel_nl) ? lower : p->nominal_fuel_nl;
+    upper = (upper > p->nominal_fuel_nl) ? upper : p->nominal_fuel_nl;
     r->fuel_ul = pfe_udiv_round_u64(p->nominal_fuel_nl, 1000U);
     r->fuel_upper_ul = pfe_udiv_round_u64(upper, 1000U);
     r->fuel_lower_ul = pfe_udiv_round_u64(lower, 1000U);
@@ -313,7 +337,7 @@ static uint32_t run_steps(pfe_predict_t *p, uint32_t units, pfe_predict_phase_t 
             p->nominal_end_speed_mm_s = pfe_sim_speed_mm_s(&p->sim);
         } else if (p->phase == PFE_PREDICT_SLOW) {
             p->lower_nl = p->sums.bound_nl + aux_nl(p, p->fuel_lower_q20) +
-                          kinetic_nl(p, p->fuel_lower_q20);
+                          kinetic_nl(p, p->fuel_lower_q20, false);
         } else {
             /* FAST: publish() reads the sum from the simulation */
         }

@@ -39,6 +39,38 @@ static int64_t gain_q32(uint32_t mass_kg, uint32_t milli)
     return (int64_t)pfe_udiv_round_u64(((uint64_t)mass_kg * milli) << 23, POW5_9);
 }
 
+/* The largest r with r^k <= x (k 2 or 3), by bisection: init time only. */
+static uint32_t iroot(uint64_t x, uint32_t k)
+{
+    uint64_t lo = 0U, hi = (k == 2U) ? 0xFFFFFFFFULL : 0x1FFFFFULL; /* hi^k < 2^64 */
+    while (lo < hi) {
+        const uint64_t mid = (lo + hi + 1U) / 2U;
+        const uint64_t p = (k == 2U) ? (mid * mid) : (mid * mid * mid);
+        if (p <= x) {
+            lo = mid;
+        } else {
+            hi = mid - 1U;
+        }
+    }
+    return (uint32_t)lo;
+}
+
+/* A step of v * tau at most (pfe_sim.h, stability): tau the controller's,
+ * or at the power limit M v^2 / P, here in us: v^2 [(mm/s)^2] M [kg] / P
+ * [W] (< 4.9e9 * 3.2e6 < 2^54); held below 2^40 before the product with
+ * v < 2^17. */
+static uint32_t stable_step_mm(const pfe_sim_t *sim, uint32_t v, uint32_t ds)
+{
+    const pfe_platoon_t *pl = sim->platoon;
+    const uint64_t ctrl_mm = ((uint64_t)v * sim->ctrl_tau_ms) / 1000U;
+    uint64_t tau_us = ((uint64_t)v * v * pl->mass_kg) / pl->object.power_max_w;
+    tau_us = (tau_us < ((uint64_t)1 << 40)) ? tau_us : ((uint64_t)1 << 40);
+    const uint64_t power_mm = (tau_us * v) / 1000000U;
+    uint64_t cap = (ctrl_mm < power_mm) ? ctrl_mm : power_mm;
+    cap = (cap > PFE_SIM_STEP_MIN_MM) ? cap : PFE_SIM_STEP_MIN_MM;
+    return (ds < cap) ? ds : (uint32_t)cap;
+}
+
 int32_t pfe_sim_speed_mm_s(const pfe_sim_t *sim)
 {
     return (sim->speed_um_s + 500) / 1000;
@@ -82,6 +114,21 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     /* Paux [mW] * fuel_q20 [nL/mJ * 2^20] / 2^12 = nL/s * 2^8; Paux <= 3.2e9 mW
      * and fuel_q20 < 2^22 keep it below 2^41. */
     sim->aux_fuel_q8 = pfe_rshift_round((int64_t)obj->power_aux_w * 1000 * obj->fuel_q20, 12U);
+    /* Time constants (pfe_sim.h, stability): 1 / kp = 10^6 / kp_milli ms,
+     * 1 / sqrt(ki) = sqrt(10^9 / ki_milli) ms. A step of step_mm lasts
+     * longer than the controller's below step_mm / tau, and longer than
+     * the power limit's (M v^2 / P) below cbrt(step_mm P 10^6 / M) mm/s
+     * (16000 * 6.4e7 * 10^6 < 2^60). */
+    uint32_t tau_ms = 1000000U / cruise->kp_milli_per_s;
+    if (cruise->ki_milli_per_s2 > 0U) {
+        const uint32_t tau_i_ms = iroot(1000000000ULL / cruise->ki_milli_per_s2, 2U);
+        tau_ms = (tau_i_ms < tau_ms) ? tau_i_ms : tau_ms;
+    }
+    sim->ctrl_tau_ms = tau_ms;
+    const uint64_t v_ctrl = ((uint64_t)step_mm * 1000U) / tau_ms;
+    const uint64_t v_power = iroot(((uint64_t)step_mm * obj->power_max_w * 1000000U) / platoon->mass_kg, 3U);
+    const uint64_t v_stiff = ((v_ctrl > v_power) ? v_ctrl : v_power) + 1U;
+    sim->stiff_below_mm_s = (v_stiff < UINT32_MAX) ? (uint32_t)v_stiff : UINT32_MAX;
     for (uint32_t k = 0U; k < road->n_samples; k++) {
         if ((road->grade_ppm[k] < -PFE_GRADE_MAX_PPM) || (road->grade_ppm[k] > PFE_GRADE_MAX_PPM)) {
             return PFE_EINVAL;
@@ -110,8 +157,11 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
     const pfe_platoon_t *pl = sim->platoon;
     const pfe_vehicle_t *obj = &pl->object;
     const uint32_t left = sim->end_mm - sim->position_mm;
-    const uint32_t ds = (left < sim->step_mm) ? left : sim->step_mm;
     const uint32_t v = (uint32_t)v_mm_s;
+    uint32_t ds = (left < sim->step_mm) ? left : sim->step_mm;
+    if (v < sim->stiff_below_mm_s) {
+        ds = stable_step_mm(sim, v, ds);
+    }
     /* ds <= 16000 mm: ds * 2^16 < 2^30; v >= 1000 mm/s: dt <= 16 s (2^20 in Q16). */
     const uint32_t dt_q16 = ((ds << 16) + (v / 2U)) / v;
 

@@ -249,6 +249,10 @@ static void reset_parse(canlog_reader_t *r)
     r->last_time_us = 0U;
     r->acc_time_us = 0U;
     r->saw_content = false;
+    /* ASC header settings hold from their line on: a new pass starts
+     * without them, as the first did. */
+    r->asc_relative = false;
+    r->asc_decimal = false;
 }
 
 static void set_name(canlog_reader_t *r, const char *name)
@@ -262,8 +266,6 @@ static int open_common(canlog_reader_t *r, const char *name, canlog_format_t for
     r->format = format;
     r->mode = mode;
     r->time_base = CANLOG_TB_UNKNOWN;
-    r->asc_relative = false;
-    r->asc_decimal = false;
     r->lines = 0U;
     r->frames = 0U;
     r->comments = 0U;

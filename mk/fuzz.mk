@@ -1,0 +1,100 @@
+# Fuzzing: libFuzzer targets (clang, ASan, UBSan) over the ECU's frame input,
+# every log parser, the DBC parser and the NVM records (tests/fuzz/).
+#
+# Included from the top-level Makefile; uses its BUILD, WARN, FW_SRC,
+# FW_HDR, HAL_HDR and its rule for the e2e drive log.
+#
+# Targets:
+#   fuzz          each target for FUZZ_SECONDS, after its regression inputs;
+#                 one summary line each (runs, libFuzzer's cov and ft, corpus,
+#                 crashes)
+#   fuzz-smoke    the same for FUZZ_SMOKE_SECONDS each (part of `make test`)
+#   fuzz-build    the targets only, in $(FUZZ_OUT)/
+#   fuzz-seeds    rewrites the committed seeds (tests/fuzz/corpus/) from the
+#                 bundled logs (tests/fuzz/make_seeds.sh)
+#
+# Targets (tests/fuzz/fuzz_NAME.c), each with its seeds in tests/fuzz/corpus/
+# NAME and the inputs of every crash found, replayed first, in
+# tests/fuzz/regress/NAME:
+#   ecu      frame sequences and time steps into pfe_ecu (firmware/)
+#   canlog   sim_host/canlog.c: candump log, candump printed, Vector ASC
+#   replay   hal/replay/hal_replay.c: the replay bus's candump parser
+#   capture  sim_host/capture.c: the capture reader
+#   dbc      sim_host/dbc.c, seeded with can_dbc/pfe.dbc
+#   nvm      firmware/pfe_nvm.c: pfe_nvm_decode, pfe_nvm_pick, and the ECU
+#            started from the record picked
+#
+# Variables:
+#   FUZZ_SECONDS        per target for `make fuzz` (60)
+#   FUZZ_SMOKE_SECONDS  per target for `make fuzz-smoke` (12)
+#   FUZZ_TARGETS        the targets to run (all of the above)
+#   FUZZ_CC             clang (Debian's clang 14, libFuzzer from libclang-rt-14-dev)
+#   FUZZ_OUT            $(BUILD)/fuzz: binaries, growing corpora, crashes, logs
+
+FUZZ_SECONDS ?= 60
+FUZZ_SMOKE_SECONDS ?= 12
+FUZZ_TARGETS ?= ecu canlog replay capture dbc nvm
+FUZZ_CC ?= clang
+FUZZ_OUT ?= $(BUILD)/fuzz
+FUZZ_PACKAGES := clang libclang-rt-14-dev
+FUZZ_CFLAGS := $(WARN) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+               -fno-omit-frame-pointer
+FUZZ_DEPS := $(FUZZ_OUT)/.deps-ok
+FUZZ_HDR := tests/fuzz/fuzz_check.h
+
+.PHONY: fuzz fuzz-smoke fuzz-build fuzz-seeds
+
+$(FUZZ_DEPS): scripts/deps.sh
+	@mkdir -p $(@D)
+	sh scripts/deps.sh $(FUZZ_PACKAGES)
+	@touch $@
+
+$(FUZZ_OUT)/fuzz_ecu: tests/fuzz/fuzz_ecu.c $(FUZZ_HDR) $(FW_SRC) $(FW_HDR) | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< $(FW_SRC)
+
+$(FUZZ_OUT)/fuzz_nvm: tests/fuzz/fuzz_nvm.c $(FUZZ_HDR) $(FW_SRC) $(FW_HDR) | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< $(FW_SRC)
+
+$(FUZZ_OUT)/fuzz_canlog: tests/fuzz/fuzz_canlog.c $(FUZZ_HDR) sim_host/canlog.c sim_host/canlog.h | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/canlog.c
+
+$(FUZZ_OUT)/fuzz_replay: tests/fuzz/fuzz_replay.c $(FUZZ_HDR) hal/replay/hal_replay.c hal/hal_can_mem.c \
+        $(HAL_HDR) $(FW_HDR) | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< hal/replay/hal_replay.c hal/hal_can_mem.c
+
+$(FUZZ_OUT)/fuzz_capture: tests/fuzz/fuzz_capture.c $(FUZZ_HDR) sim_host/capture.c sim_host/capture.h \
+        $(FW_HDR) | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/capture.c
+
+$(FUZZ_OUT)/fuzz_dbc: tests/fuzz/fuzz_dbc.c $(FUZZ_HDR) sim_host/dbc.c sim_host/dbc.h | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/dbc.c -lm
+
+# The DBC's seed is the DBC itself, as it is now (16 KB: inputs up to 20 KB).
+FUZZ_SEED_DIRS_dbc := $(FUZZ_OUT)/seed/dbc
+$(FUZZ_OUT)/seed/dbc/pfe.dbc: can_dbc/pfe.dbc
+	@mkdir -p $(@D)
+	cp $< $@
+
+FUZZ_BINS := $(addprefix $(FUZZ_OUT)/fuzz_,$(FUZZ_TARGETS))
+
+fuzz-build: $(FUZZ_BINS) $(FUZZ_OUT)/seed/dbc/pfe.dbc
+
+# $(1): seconds per target
+define fuzz_run
+	@set -e; for t in $(FUZZ_TARGETS); do \
+	    case $$t in dbc) seeds="$(FUZZ_SEED_DIRS_dbc)" len=20480 ;; *) seeds="" len=4096 ;; esac; \
+	    FUZZ_MAX_LEN=$$len sh tests/fuzz/run_fuzz.sh $(FUZZ_OUT)/fuzz_$$t $$t $(1) $(FUZZ_OUT) $$seeds; \
+	done
+endef
+
+fuzz: fuzz-build
+	$(call fuzz_run,$(FUZZ_SECONDS))
+
+fuzz-smoke: fuzz-build
+	$(call fuzz_run,$(FUZZ_SMOKE_SECONDS))
+
+$(FUZZ_OUT)/ecu_seed: tests/fuzz/ecu_seed.c sim_host/capture.c sim_host/capture.h | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(WARN) -O1 -I. -Ifirmware -Isim_host -o $@ $< sim_host/capture.c
+
+fuzz-seeds: $(FUZZ_OUT)/ecu_seed $(BUILD)/e2e/payload/drive.log
+	sh tests/fuzz/make_seeds.sh $(BUILD)/e2e/payload/drive.log $(FUZZ_OUT)/ecu_seed
