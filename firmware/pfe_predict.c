@@ -291,7 +291,8 @@ static int64_t aux_nl(const pfe_predict_t *p, int64_t fq)
     const uint64_t fq_nominal = (uint64_t)p->platoon->object.fuel_q20;
     uint64_t rem = 0U;
     const uint64_t whole = pfe_udiv_u64(p->nominal_aux_nl, fq_nominal, &rem);
-    return (int64_t)((whole * (uint64_t)fq) + pfe_udiv_round_u64(rem * (uint64_t)fq, fq_nominal));
+    const uint64_t scaled = (whole * (uint64_t)fq) + pfe_udiv_round_u64(rem * (uint64_t)fq, fq_nominal);
+    return (int64_t)scaled;
 }
 
 static void publish(pfe_predict_t *p)

@@ -42,7 +42,8 @@ static int64_t gain_q32(uint32_t mass_kg, uint32_t milli)
 /* The largest r with r^k <= x (k 2 or 3), by bisection: init time only. */
 static uint32_t iroot(uint64_t x, uint32_t k)
 {
-    uint64_t lo = 0U, hi = (k == 2U) ? 0xFFFFFFFFULL : 0x1FFFFFULL; /* hi^k < 2^64 */
+    uint64_t lo = 0U;
+    uint64_t hi = (k == 2U) ? 0xFFFFFFFFULL : 0x1FFFFFULL; /* hi^k < 2^64 */
     while (lo < hi) {
         const uint64_t mid = (lo + hi + 1U) / 2U;
         const uint64_t p = (k == 2U) ? (mid * mid) : (mid * mid * mid);
