@@ -17,7 +17,10 @@
 #
 # Summary line, from libFuzzer's own figures (its last status line and
 # -print_final_stats):
-#   fuzz: NAME: 123456 runs in 12 s, cov 555 ft 2734, corpus 1245 inputs, 3 regression inputs ok, 0 crashes
+#   fuzz: NAME: 123456 runs in 12 s, cov 555 of 1542 edges, ft 2734, corpus 1245 inputs,
+#         3 regression inputs ok, 0 crashes
+# (cov: edges reached, of the binary's instrumented edges, harness included;
+# ft: libFuzzer's features, edges with hit counts)
 #
 # Exit status 0, or 1 when a regression input or a fuzzing input crashed
 # (the input is named: commit it under tests/fuzz/regress/NAME with the fix),
@@ -67,9 +70,10 @@ runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
 status=$(grep -E '^#[0-9]+.*cov: ' "$log" | tail -n 1)
 cov=$(echo "$status" | sed -n 's/.* cov: \([0-9]*\).*/\1/p')
 ft=$(echo "$status" | sed -n 's/.* ft: \([0-9]*\).*/\1/p')
+edges=$(sed -n 's/.*(\([0-9]*\) inline 8-bit counters).*/\1/p' "$log" | head -n 1)
 inputs=$(find "$corpus" -type f | wc -l)
 crashes=$(( $(find "$crash" -type f | wc -l) - crashes_before ))
-echo "fuzz: $name: ${runs:-0} runs in $seconds s, cov ${cov:-0} ft ${ft:-0}," \
+echo "fuzz: $name: ${runs:-0} runs in $seconds s, cov ${cov:-0} of ${edges:-?} edges, ft ${ft:-0}," \
      "corpus $inputs inputs, $nreg regression inputs ok, $crashes crashes"
 if [ $rc -ne 0 ]; then
     echo "fuzz: $name: libFuzzer stopped (exit $rc):" >&2
