@@ -45,6 +45,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_args.h"
 #include "../firmware/pfe_calib.h"
 #include "../firmware/pfe_codec.h"
 #include "../firmware/pfe_platoon.h"
@@ -103,30 +104,6 @@ static void usage(void)
             "                [--out LOG]\n");
 }
 
-static int parse_ul(const char *s, unsigned long lo, unsigned long hi, unsigned long *out)
-{
-    char *end = NULL;
-    errno = 0;
-    const unsigned long v = strtoul(s, &end, 0);
-    if ((errno != 0) || (end == s) || (*end != '\0') || (s[0] == '-') || (v < lo) || (v > hi)) {
-        return -1;
-    }
-    *out = v;
-    return 0;
-}
-
-static int parse_double(const char *s, double lo, double hi, double *out)
-{
-    char *end = NULL;
-    errno = 0;
-    const double v = strtod(s, &end);
-    if ((errno != 0) || (end == s) || (*end != '\0') || !(v >= lo) || !(v <= hi)) {
-        return -1;
-    }
-    *out = v;
-    return 0;
-}
-
 /* 0, or 2 after a message. */
 static int parse_args(int argc, char **argv, options_t *o)
 {
@@ -168,35 +145,35 @@ static int parse_args(int argc, char **argv, options_t *o)
             o->ifname = v;
             bad = (v[0] == '\0') || (strlen(v) > 15U) || (strpbrk(v, " \t()#") != NULL);
         } else if (strcmp(a, "--source") == 0) {
-            bad = parse_ul(v, 0U, 253U, &o->source);
+            bad = cli_parse_ul(v, 0U, 253U, &o->source);
         } else if (strcmp(a, "--config-source") == 0) {
-            bad = parse_ul(v, 0U, 253U, &o->config_source);
+            bad = cli_parse_ul(v, 0U, 253U, &o->config_source);
         } else if (strcmp(a, "--preview-source") == 0) {
-            bad = parse_ul(v, 0U, 253U, &o->preview_source);
+            bad = cli_parse_ul(v, 0U, 253U, &o->preview_source);
         } else if (strcmp(a, "--set-speed-kmh") == 0) {
-            bad = parse_double(v, 5.0, 250.0, &o->set_kmh);
+            bad = cli_parse_double(v, 5.0, 250.0, &o->set_kmh);
         } else if (strcmp(a, "--vehicles") == 0) {
-            bad = parse_ul(v, 1U, PFE_MAX_VEHICLES, &o->vehicles);
+            bad = cli_parse_ul(v, 1U, PFE_MAX_VEHICLES, &o->vehicles);
         } else if (strcmp(a, "--position") == 0) {
-            bad = parse_ul(v, 0U, PFE_MAX_VEHICLES - 1U, &o->position);
+            bad = cli_parse_ul(v, 0U, PFE_MAX_VEHICLES - 1U, &o->position);
         } else if (strcmp(a, "--gap-m") == 0) {
-            bad = parse_double(v, 0.0, 642.55, &o->gap_m);
+            bad = cli_parse_double(v, 0.0, 642.55, &o->gap_m);
         } else if (strcmp(a, "--seed") == 0) {
             char *end = NULL;
             errno = 0;
             o->seed = strtoull(v, &end, 0);
             bad = (errno != 0) || (end == v) || (*end != '\0') || (v[0] == '-');
         } else if (strcmp(a, "--speed-noise-kmh") == 0) {
-            bad = parse_double(v, 0.0, 20.0, &o->speed_noise_kmh);
+            bad = cli_parse_double(v, 0.0, 20.0, &o->speed_noise_kmh);
         } else if (strcmp(a, "--pitch-noise-deg") == 0) {
-            bad = parse_double(v, 0.0, 5.0, &o->pitch_noise_deg);
+            bad = cli_parse_double(v, 0.0, 5.0, &o->pitch_noise_deg);
         } else if (strcmp(a, "--preview-period-s") == 0) {
-            bad = parse_double(v, 0.5, 3600.0, &d);
+            bad = cli_parse_double(v, 0.5, 3600.0, &d);
             o->preview_period_ticks = (unsigned long)lround(d * 100.0);
         } else if (strcmp(a, "--preview-samples") == 0) {
-            bad = parse_ul(v, 1U, PFE_PREVIEW_MAX_SAMPLES, &o->preview_samples);
+            bad = cli_parse_ul(v, 1U, PFE_PREVIEW_MAX_SAMPLES, &o->preview_samples);
         } else if (strcmp(a, "--preview-spacing-m") == 0) {
-            bad = parse_ul(v, 1U, 250U, &o->preview_spacing_m);
+            bad = cli_parse_ul(v, 1U, 250U, &o->preview_spacing_m);
         } else if (strcmp(a, "--segment") == 0) {
             if (o->n_seg == MAX_SEGMENTS) {
                 fprintf(stderr, "drivegen: more than %d --segment options\n", MAX_SEGMENTS);

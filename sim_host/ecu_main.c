@@ -25,6 +25,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "cli_args.h"
 #include "firmware/pfe_calib.h"
 #include "firmware/pfe_ecu.h"
 #include "firmware/pfe_fixed.h"
@@ -57,18 +58,6 @@ static void usage(FILE *f)
                "               [--duration-s S]\n");
 }
 
-static int parse_ul(const char *s, unsigned long lo, unsigned long hi, unsigned long *out)
-{
-    char *end = NULL;
-    errno = 0;
-    const unsigned long v = strtoul(s, &end, 0);
-    if ((errno != 0) || (end == s) || (*end != '\0') || (s[0] == '-') || (v < lo) || (v > hi)) {
-        return -1;
-    }
-    *out = v;
-    return 0;
-}
-
 int main(int argc, char **argv)
 {
     const char *iface = NULL;
@@ -93,17 +82,17 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "--nvm") == 0) {
             nvm_path = v;
         } else if (strcmp(a, "--address") == 0) {
-            bad = parse_ul(v, 0U, 253U, &address);
+            bad = cli_parse_ul(v, 0U, 253U, &address);
         } else if (strcmp(a, "--save-interval-ms") == 0) {
-            bad = parse_ul(v, 1000U, 3600000U, &interval);
+            bad = cli_parse_ul(v, 1000U, 3600000U, &interval);
         } else if (strcmp(a, "--vehicles") == 0) {
-            bad = parse_ul(v, 1U, PFE_MAX_VEHICLES, &vehicles);
+            bad = cli_parse_ul(v, 1U, PFE_MAX_VEHICLES, &vehicles);
         } else if (strcmp(a, "--position") == 0) {
-            bad = parse_ul(v, 0U, PFE_MAX_VEHICLES - 1U, &position);
+            bad = cli_parse_ul(v, 0U, PFE_MAX_VEHICLES - 1U, &position);
         } else if (strcmp(a, "--gap-cm") == 0) {
-            bad = parse_ul(v, 0U, 100000U, &gap_cm);
+            bad = cli_parse_ul(v, 0U, 100000U, &gap_cm);
         } else if (strcmp(a, "--duration-s") == 0) {
-            bad = parse_ul(v, 1U, 86400U * 365U, &duration);
+            bad = cli_parse_ul(v, 1U, 86400U * 365U, &duration);
         } else {
             fprintf(stderr, "pfe_ecu: unknown option '%s'\n", a);
             usage(stderr);

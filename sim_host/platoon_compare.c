@@ -43,6 +43,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "cli_args.h"
 #include "node_model.h"
 #include "ref_model.h"
 
@@ -66,18 +67,6 @@ static void usage(FILE *f)
             "  --only MODEL         run one model once (node or object)\n"
             "  --bench              host times of the first road as bench: lines\n",
             NODE_MAX_VEHICLES);
-}
-
-static int parse_double(const char *s, double lo, double hi, double *out)
-{
-    char *end = NULL;
-    errno = 0;
-    const double v = strtod(s, &end);
-    if ((errno != 0) || (end == s) || (*end != '\0') || !isfinite(v) || (v < lo) || (v > hi)) {
-        return -1;
-    }
-    *out = v;
-    return 0;
 }
 
 static double now_ms(void)
@@ -200,21 +189,21 @@ int main(int argc, char **argv)
             only = v;
             badv = (strcmp(v, "node") != 0) && (strcmp(v, "object") != 0);
         } else if (strcmp(a, "--vehicles") == 0) {
-            badv = parse_double(v, 1.0, NODE_MAX_VEHICLES, &n) || (n != floor(n));
+            badv = cli_parse_double(v, 1.0, NODE_MAX_VEHICLES, &n) || (n != floor(n));
         } else if (strcmp(a, "--set-speed-kmh") == 0) {
-            badv = parse_double(v, 5.0, 250.0, &set_kmh);
+            badv = cli_parse_double(v, 5.0, 250.0, &set_kmh);
         } else if (strcmp(a, "--time-gap-s") == 0) {
-            badv = parse_double(v, 0.0, 10.0, &time_gap);
+            badv = cli_parse_double(v, 0.0, 10.0, &time_gap);
         } else if (strcmp(a, "--standstill-m") == 0) {
-            badv = parse_double(v, 0.0, 100.0, &standstill);
+            badv = cli_parse_double(v, 0.0, 100.0, &standstill);
         } else if (strcmp(a, "--margin-kmh") == 0) {
-            badv = parse_double(v, 0.0, 36.0, &margin_kmh);
+            badv = cli_parse_double(v, 0.0, 36.0, &margin_kmh);
         } else if (strcmp(a, "--length-m") == 0) {
-            badv = parse_double(v, 0.0, 30.0, &length);
+            badv = cli_parse_double(v, 0.0, 30.0, &length);
         } else if (strcmp(a, "--step-s") == 0) {
-            badv = parse_double(v, 0.001, 1.0, &step);
+            badv = cli_parse_double(v, 0.001, 1.0, &step);
         } else if (strcmp(a, "--repeat") == 0) {
-            badv = parse_double(v, 1.0, MAX_REPEAT, &repeat) || (repeat != floor(repeat));
+            badv = cli_parse_double(v, 1.0, MAX_REPEAT, &repeat) || (repeat != floor(repeat));
         } else {
             fprintf(stderr, "platoon_compare: unknown option '%s'\n", a);
             usage(stderr);

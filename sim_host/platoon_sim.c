@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_args.h"
 #include "../firmware/pfe_calib.h"
 #include "../firmware/pfe_platoon.h"
 #include "road_csv.h"
@@ -35,18 +36,6 @@ static void usage(FILE *f)
             "  --no-drag-reduction trucks without slipstream (phi = 0)\n"
             "  --trace OUT.csv     write one row per step for both models\n",
             PFE_MAX_VEHICLES);
-}
-
-static int parse_double(const char *s, double lo, double hi, double *out)
-{
-    char *end = NULL;
-    errno = 0;
-    const double v = strtod(s, &end);
-    if ((errno != 0) || (end == s) || (*end != '\0') || !isfinite(v) || (v < lo) || (v > hi)) {
-        return -1;
-    }
-    *out = v;
-    return 0;
 }
 
 int main(int argc, char **argv)
@@ -72,15 +61,15 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "--trace") == 0) {
             trace_path = v;
         } else if (strcmp(a, "--vehicles") == 0) {
-            bad = parse_double(v, 1.0, PFE_MAX_VEHICLES, &n) || (n != floor(n));
+            bad = cli_parse_double(v, 1.0, PFE_MAX_VEHICLES, &n) || (n != floor(n));
         } else if (strcmp(a, "--set-speed-kmh") == 0) {
-            bad = parse_double(v, 5.0, 250.0, &set_kmh);
+            bad = cli_parse_double(v, 5.0, 250.0, &set_kmh);
         } else if (strcmp(a, "--gap-m") == 0) {
-            bad = parse_double(v, 0.0, 1000.0, &gap_m);
+            bad = cli_parse_double(v, 0.0, 1000.0, &gap_m);
         } else if (strcmp(a, "--time-gap-s") == 0) {
-            bad = parse_double(v, 0.0, 60.0, &time_gap);
+            bad = cli_parse_double(v, 0.0, 60.0, &time_gap);
         } else if (strcmp(a, "--step-m") == 0) {
-            bad = parse_double(v, 0.1, 10.0, &step_m);
+            bad = cli_parse_double(v, 0.1, 10.0, &step_m);
         } else {
             fprintf(stderr, "platoon_sim: unknown option '%s'\n", a);
             usage(stderr);

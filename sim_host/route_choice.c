@@ -27,6 +27,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_args.h"
 #include "fuel_bounds.h"
 #include "node_model.h"
 
@@ -44,18 +45,6 @@ static void usage(FILE *f)
             "  --time-gap-s H       followers' time gap (default 0.4)\n"
             "  at least 2 and at most %d routes\n",
             NODE_MAX_VEHICLES, MAX_ROUTES);
-}
-
-static int parse_double(const char *s, double lo, double hi, double *out)
-{
-    char *end = NULL;
-    errno = 0;
-    const double v = strtod(s, &end);
-    if ((errno != 0) || (end == s) || (*end != '\0') || !isfinite(v) || (v < lo) || (v > hi)) {
-        return -1;
-    }
-    *out = v;
-    return 0;
 }
 
 /* "M:P:A:E" into a calibration; returns 0 or -1 with the reason in err. */
@@ -81,7 +70,7 @@ static int parse_truck(const char *spec, pfe_vehicle_calib_t *c, char *err, size
         if (colon != NULL) {
             *colon = '\0';
         }
-        if (parse_double(p, lo[k], hi[k], &v[k]) != 0) {
+        if (cli_parse_double(p, lo[k], hi[k], &v[k]) != 0) {
             (void)snprintf(err, err_len, "%s '%s' is not a number in [%g, %g]", names[k], p, lo[k], hi[k]);
             return -1;
         }
@@ -134,12 +123,12 @@ int main(int argc, char **argv)
         if (bad) {
             /* reported below */
         } else if (strcmp(a, "--vehicles") == 0) {
-            bad = parse_double(v, 1.0, NODE_MAX_VEHICLES, &n) || (n != floor(n));
+            bad = cli_parse_double(v, 1.0, NODE_MAX_VEHICLES, &n) || (n != floor(n));
             vehicles_given = 1;
         } else if (strcmp(a, "--set-speed-kmh") == 0) {
-            bad = parse_double(v, 5.0, 250.0, &set_kmh);
+            bad = cli_parse_double(v, 5.0, 250.0, &set_kmh);
         } else if (strcmp(a, "--time-gap-s") == 0) {
-            bad = parse_double(v, 0.0, 10.0, &time_gap);
+            bad = cli_parse_double(v, 0.0, 10.0, &time_gap);
         } else if (strcmp(a, "--truck") == 0) {
             if (n_trucks == NODE_MAX_VEHICLES) {
                 fprintf(stderr, "route_choice: at most %u trucks\n", NODE_MAX_VEHICLES);

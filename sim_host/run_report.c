@@ -59,6 +59,7 @@
 #include <sys/types.h>
 #include <sys/wait.h>
 
+#include "cli_args.h"
 #include "../firmware/pfe_can.h"
 #include "../firmware/pfe_codec.h"
 #include "bus_ref.h"
@@ -178,30 +179,6 @@ static void usage(FILE *f)
     }
 }
 
-static int parse_ul(const char *s, unsigned long lo, unsigned long hi, unsigned long *out)
-{
-    char *end = NULL;
-    errno = 0;
-    const unsigned long v = strtoul(s, &end, 0);
-    if ((errno != 0) || (end == s) || (*end != '\0') || (s[0] == '-') || (v < lo) || (v > hi)) {
-        return -1;
-    }
-    *out = v;
-    return 0;
-}
-
-static int parse_double(const char *s, double lo, double hi, double *out)
-{
-    char *end = NULL;
-    errno = 0;
-    const double v = strtod(s, &end);
-    if ((errno != 0) || (end == s) || (*end != '\0') || !(v >= lo) || !(v <= hi)) {
-        return -1;
-    }
-    *out = v;
-    return 0;
-}
-
 static int parse_args(int argc, char **argv, options_t *o)
 {
     memset(o, 0, sizeof *o);
@@ -238,17 +215,17 @@ static int parse_args(int argc, char **argv, options_t *o)
         const char *v = argv[++i];
         int bad = 0;
         if (strcmp(a, "--module-sa") == 0) {
-            bad = parse_ul(v, 0U, 253U, &o->module_sa);
+            bad = cli_parse_ul(v, 0U, 253U, &o->module_sa);
         } else if (strcmp(a, "--warmup-s") == 0) {
-            bad = parse_double(v, 0.0, 1e6, &o->warmup_s);
+            bad = cli_parse_double(v, 0.0, 1e6, &o->warmup_s);
         } else if (strcmp(a, "--rate-floor-l-h") == 0) {
-            bad = parse_double(v, 0.0, 3212.75, &o->floor_l_h);
+            bad = cli_parse_double(v, 0.0, 3212.75, &o->floor_l_h);
         } else if (strcmp(a, "--vehicles") == 0) {
-            bad = parse_ul(v, 1U, PFE_MAX_VEHICLES, &o->vehicles);
+            bad = cli_parse_ul(v, 1U, PFE_MAX_VEHICLES, &o->vehicles);
         } else if (strcmp(a, "--position") == 0) {
-            bad = parse_ul(v, 0U, PFE_MAX_VEHICLES - 1U, &o->position);
+            bad = cli_parse_ul(v, 0U, PFE_MAX_VEHICLES - 1U, &o->position);
         } else if (strcmp(a, "--gap-m") == 0) {
-            bad = parse_double(v, 0.0, 642.55, &o->gap_m);
+            bad = cli_parse_double(v, 0.0, 642.55, &o->gap_m);
         } else if (strcmp(a, "--out") == 0) {
             o->prefix = v;
             bad = (v[0] == '\0') || (strlen(v) > PATH_MAX_LEN - 16U);

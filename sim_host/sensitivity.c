@@ -31,6 +31,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include "cli_args.h"
 #include "road_csv.h"
 #include "sensitivity_run.h"
 
@@ -66,18 +67,6 @@ static void usage(FILE *f)
             "  --no-plot           write the CSV only\n"
             "  --gnuplot PROG      the gnuplot to run (default: gnuplot on PATH)\n",
             PFE_MAX_VEHICLES);
-}
-
-static int parse_double(const char *s, double lo, double hi, double *out)
-{
-    char *end = NULL;
-    errno = 0;
-    const double v = strtod(s, &end);
-    if ((errno != 0) || (end == s) || (*end != '\0') || !isfinite(v) || (v < lo) || (v > hi)) {
-        return -1;
-    }
-    *out = v;
-    return 0;
 }
 
 /* NAME from .../NAME.csv; -1 when empty or too long. */
@@ -530,9 +519,9 @@ int main(int argc, char **argv)
             gnuplot = v;
             bad = (*v == '\0');
         } else if (strcmp(a, "--vehicles") == 0) {
-            bad = parse_double(v, 1.0, PFE_MAX_VEHICLES, &n) || (n != floor(n));
+            bad = cli_parse_double(v, 1.0, PFE_MAX_VEHICLES, &n) || (n != floor(n));
         } else {
-            bad = parse_double(v, 5.0, 250.0, &set_kmh); /* --set-speed-kmh */
+            bad = cli_parse_double(v, 5.0, 250.0, &set_kmh); /* --set-speed-kmh */
         }
         if (bad) {
             fprintf(stderr, "sensitivity: option %s needs a valid value (got '%s')\n", a,
