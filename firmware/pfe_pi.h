@@ -42,16 +42,15 @@ typedef struct {
  * at equilibrium starts without a bump. */
 void pfe_pi_init(pfe_pi_t *pi, int64_t kp_q32, int64_t ki_q32, int32_t initial_output);
 
-/* One step; returns the output, rounded, within [out_min, out_max]
- * (out_min <= out_max required; if not, out_max wins). Inline: it runs in
- * every step of the simulation (pfe_sim.c), whose loops it must not leave. */
-static inline int32_t pfe_pi_step(pfe_pi_t *pi, int32_t error, uint32_t dt_q16, int32_t out_min,
-                                  int32_t out_max)
+/* pfe_pi_step() for a caller that guarantees its limits and step:
+ * -PFE_PI_OUT_MAX <= lo <= hi <= PFE_PI_OUT_MAX and dt_q16 <=
+ * PFE_PI_DT_MAX_Q16 (the simulation's are, by construction: pfe_sim.c).
+ * The same result as pfe_pi_step() for such arguments, without clamping
+ * them again. The error is still clamped. */
+static inline int32_t pfe_pi_step_in_range(pfe_pi_t *pi, int32_t error, uint32_t dt, int32_t lo,
+                                           int32_t hi)
 {
-    const int32_t hi = pfe_clamp_i32(out_max, -PFE_PI_OUT_MAX, PFE_PI_OUT_MAX);
-    const int32_t lo = pfe_clamp_i32((out_min <= out_max) ? out_min : out_max, -PFE_PI_OUT_MAX, hi);
     const int32_t e = pfe_clamp_i32(error, -PFE_PI_ERROR_MAX, PFE_PI_ERROR_MAX);
-    const uint32_t dt = (dt_q16 > PFE_PI_DT_MAX_Q16) ? PFE_PI_DT_MAX_Q16 : dt_q16;
 
     /* kp < 2^35 and |e| <= 2^25: below 2^60; P clamped to +-2^27. */
     const int32_t p = (int32_t)pfe_clamp_i64(pfe_mul_q(pi->kp_q32, e, 32U), -(1 << 27), 1 << 27);
@@ -69,6 +68,18 @@ static inline int32_t pfe_pi_step(pfe_pi_t *pi, int32_t error, uint32_t dt_q16, 
     const int32_t integral = (winding_up || winding_down) ? pi->integral_q4 : trial_q4;
     pi->integral_q4 = pfe_clamp_i32(integral, lo * 16, hi * 16);
     return pfe_clamp_i32(p + ((pi->integral_q4 + 8) >> 4), lo, hi);
+}
+
+/* One step; returns the output, rounded, within [out_min, out_max]
+ * (out_min <= out_max required; if not, out_max wins). Inline: it runs in
+ * every step of the simulation (pfe_sim.c), whose loops it must not leave. */
+static inline int32_t pfe_pi_step(pfe_pi_t *pi, int32_t error, uint32_t dt_q16, int32_t out_min,
+                                  int32_t out_max)
+{
+    const int32_t hi = pfe_clamp_i32(out_max, -PFE_PI_OUT_MAX, PFE_PI_OUT_MAX);
+    const int32_t lo = pfe_clamp_i32((out_min <= out_max) ? out_min : out_max, -PFE_PI_OUT_MAX, hi);
+    const uint32_t dt = (dt_q16 > PFE_PI_DT_MAX_Q16) ? PFE_PI_DT_MAX_Q16 : dt_q16;
+    return pfe_pi_step_in_range(pi, error, dt, lo, hi);
 }
 
 

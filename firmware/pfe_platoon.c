@@ -75,6 +75,19 @@ int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
         pl->position[i] = pl->position[0];
         pl->position[i].power_aux_w = 0U;
     }
+    /* Formation drag: the position with the largest air_i / m_i, compared
+     * by cross-multiplication (air_q32 < 2^17, m <= 1e5 < 2^17). */
+    uint32_t most = 0U;
+    for (uint32_t i = 1U; i < n; i++) {
+        if (((uint64_t)pl->position[i].air_q32 * cfg->vehicle[most]->mass_kg) >
+            ((uint64_t)pl->position[most].air_q32 * cfg->vehicle[i]->mass_kg)) {
+            most = i;
+        }
+    }
+    /* air < 2^17 times M < 2^22: below 2^39. */
+    const int64_t formation = (int64_t)pfe_udiv_round_u64((uint64_t)pl->position[most].air_q32 * mass,
+                                                          cfg->vehicle[most]->mass_kg) - obj->air_q32;
+    pl->formation_air_q32 = (formation > 0) ? formation : 0;
     const pfe_vehicle_calib_t *wp = cfg->vehicle[weakest(cfg, 1)];
     const pfe_vehicle_calib_t *wt = cfg->vehicle[weakest(cfg, 0)];
     pl->n_vehicles = n;
@@ -96,6 +109,17 @@ int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
     obj->power_aux_w = (uint32_t)aux;
     obj->reduction_bp = 0U;
     return PFE_OK;
+}
+
+int32_t pfe_platoon_force_max_n(const pfe_platoon_t *pl, int32_t speed_mm_s)
+{
+    const pfe_vehicle_t *obj = &pl->object;
+    const int32_t v = pfe_clamp_i32(speed_mm_s, 0, PFE_SPEED_MAX_MM_S);
+    /* formation < 2^22 times v^2 < 2^33: below 2^55; the result < 2^23 N. */
+    const int64_t drag = pfe_rshift_round(pl->formation_air_q32 * ((int64_t)v * v), 32U);
+    const int64_t f = (int64_t)pfe_wheel_force_max_n(obj->power_max_w, obj->traction_max_n, v) - drag;
+    const int64_t lo = -(int64_t)obj->brake_max_n;
+    return (int32_t)((f < lo) ? lo : f);
 }
 
 void pfe_platoon_grade_accel(const pfe_platoon_t *pl, int32_t grade_ppm, pfe_grade_accel_t *out)

@@ -7,6 +7,16 @@
  *
  *   M                 eq. 4.3   sum of m_i (and M + sum mj_i for eq. 3.7)
  *   Pmax_platoon      eq. 4.4   min_i(Pmax_i / m_i) * M (traction likewise)
+ *   formation drag    4.4, 5.1.4  the platoon keeps its formation (thesis
+ *                     5.1.4): at its force limit it climbs no faster than the
+ *                     truck with the most air drag per kilogram, so the
+ *                     limit is lowered by c v^2 with
+ *                     c = M max_i(k_i / m_i) - sum k_i >= 0 (k_i the drag
+ *                     coefficient of position i with its phi_i). Exact for
+ *                     trucks of one power-to-mass; with mixed trucks the
+ *                     worst power and the worst drag are combined, which
+ *                     errs on the slow side. c is 0 for one truck or
+ *                     without drag reduction.
  *   Fb_max_platoon    eq. 4.5   sum of Fb_max_i (= N Fb_max for equal trucks)
  *   air drag          eq. 4.6   1/2 rho v^2 sum cw_i Af_i (1 - phi_i(d)/100)
  *   rolling           eq. 4.8   cr M g (cos alpha ~ 1; cr may differ per truck)
@@ -44,6 +54,7 @@ typedef struct {
     int64_t gravity_q32;                         /* g * 2^32 / 10^6, for g * grade */
     int64_t inv_mass_q30;                        /* 10^6 * 2^30 / M: um/s^2 per N, * 2^30 */
     int32_t force_limit_q2;                      /* M * PFE_ACCEL_MAX_UM_S2, N * 2^2 */
+    int64_t formation_air_q32;                   /* c above, N per (mm/s)^2 * 2^32, < 2^22 */
     pfe_vehicle_t object;                        /* the platoon as one point mass */
     pfe_vehicle_t position[PFE_MAX_VEHICLES];    /* each truck at its position */
 } pfe_platoon_t;
@@ -63,6 +74,11 @@ void pfe_platoon_config_uniform(pfe_platoon_config_t *cfg, uint32_t n_vehicles, 
  * Uses 64-bit divisions: configuration time only.
  */
 int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg);
+
+/* The object model's largest wheel force at a speed: min(Pmax_platoon / v,
+ * traction) - c v^2 (formation drag above), rounded N, never below
+ * -brake_max. The simulation (pfe_sim.c) computes the same inline. */
+int32_t pfe_platoon_force_max_n(const pfe_platoon_t *pl, int32_t speed_mm_s);
 
 /* Small-angle gravity of the object model (eq. 4.8, 4.10): along = g * grade,
  * normal = g. grade_ppm is clamped to +-PFE_GRADE_MAX_PPM. */

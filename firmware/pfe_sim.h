@@ -9,7 +9,8 @@
  * Discretisation (explicit Euler in distance; the reference uses the same):
  *   dt      = ds / v                         (v at the start of the step)
  *   grade   = road sample holding at the step's midpoint (zero-order hold)
- *   Fw      = PI(v_set - v), within [-Fb_max, min(Pmax / v, traction)]
+ *   Fw      = PI(v_set - v), within [-Fb_max, min(Pmax / v, traction) - c v^2]
+ *             (c: the formation drag of pfe_platoon.h)
  *   a       = (Fw - Fa(v) - Fr - Fg) / M     eq. 4.3
  *   v      += a dt
  *   fuel   += delta (Fw' ds + Paux dt) / (eta rho_d), Fw' = (M + Mj) a +
@@ -71,6 +72,7 @@ typedef struct {
     int64_t aux_fuel_q8;     /* fuel for sum Paux, nL/s * 2^8 (eq. 4.14) */
     uint32_t ctrl_tau_ms;    /* the controller's time constant, min(1 / kp, 1 / sqrt(ki)) */
     uint32_t stiff_below_mm_s; /* below this speed a step may be shortened (see the top) */
+    uint32_t formation_air_q32; /* the platoon's formation drag (pfe_platoon.h), < 2^22 */
     /* State after the last step. */
     int32_t speed_um_s;
     uint32_t position_mm;

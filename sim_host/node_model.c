@@ -366,11 +366,13 @@ int object_platoon_build(ref_platoon_t *pl, const node_config_t *cfg, object_cho
     ref_vehicle_t *o = &pl->object;
     double eta_sum = 0.0;
     double p_lo = INFINITY, p_hi = 0.0, t_lo = INFINITY, t_hi = 0.0;
-    double area_lo = INFINITY, area_hi = 0.0, keep_half = 0.0;
+    double area_lo = INFINITY, area_hi = 0.0, keep_half = 0.0, most = 0.0;
     for (unsigned i = 0U; i < n; i++) {
         const pfe_vehicle_calib_t *c = cfg->vehicle[i];
         ref_vehicle_t v;
         ref_vehicle_init(&v, c, cfg->env, ref_drag_reduction_pct(cfg->drag, i, n, gap));
+        /* formation drag (below): the largest drag per kilogram */
+        most = fmax(most, ((choice == OBJECT_SLOWEST) ? 0.5 * rho : v.air_k) / v.mass);
         o->air_k += v.air_k;              /* eq. 4.6 */
         o->mass += v.mass;                /* eq. 4.3 */
         o->mass_fuel += v.mass_fuel;
@@ -395,6 +397,11 @@ int object_platoon_build(ref_platoon_t *pl, const node_config_t *cfg, object_cho
         p_per_kg = p_hi;
         t_per_kg = t_hi;
     }
+    /* Formation drag (pfe_platoon.h), of the trucks as this choice sees
+     * them; the slowest platoon's every truck has the largest frontal area,
+     * the fastest platoon has none. */
+    most = (choice == OBJECT_SLOWEST) ? most * area_hi : most;
+    pl->formation_air_k = (choice == OBJECT_FASTEST) ? 0.0 : fmax(0.0, (most * o->mass) - o->air_k);
     o->power_max = p_per_kg * o->mass;
     o->traction_max = t_per_kg * o->mass;
     o->fuel_per_j = 1.0 / ((eta_sum / n) * (cfg->env->fuel_energy_j_ml * 1000.0));
@@ -422,8 +429,7 @@ int object_sim_init(object_sim_t *s, const ref_platoon_t *pl, const pfe_cruise_c
     s->max_speed_m_s = -INFINITY;
     const ref_vehicle_t *o = &pl->object;
     const double hold = ref_object_resistance(pl, initial_speed_m_s, road->grade[0]);
-    const double f0 = clamp(hold, -o->brake_max,
-                            ref_wheel_force_max(o->power_max, o->traction_max, initial_speed_m_s));
+    const double f0 = clamp(hold, -o->brake_max, ref_platoon_force_max(pl, initial_speed_m_s));
     ref_pi_init(&s->pi, o->mass * cruise->kp_milli_per_s / 1000.0,
                 o->mass * cruise->ki_milli_per_s2 / 1000.0, f0);
     return 0;
@@ -444,7 +450,7 @@ int object_sim_step(object_sim_t *s)
     const double x = s->position_m;
     const double mid = x + (v * dt / 2.0);
     const double resist = ref_object_resistance(pl, v, node_road_grade(s->road, mid));
-    const double f_max = ref_wheel_force_max(o->power_max, o->traction_max, v);
+    const double f_max = ref_platoon_force_max(pl, v);
     const double force = ref_pi_step(&s->pi, s->set_speed_m_s - v, dt, -o->brake_max, f_max);
     const double accel = clamp((force - resist) / o->mass, -ACCEL_MAX, ACCEL_MAX);
     const double v1 = clamp(v + (accel * dt), 0.0, SPEED_MAX);

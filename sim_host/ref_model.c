@@ -86,6 +86,11 @@ int ref_platoon_init(ref_platoon_t *pl, const pfe_platoon_config_t *cfg)
         p_per_kg = fmin(p_per_kg, v->power_max / v->mass);
         t_per_kg = fmin(t_per_kg, v->traction_max / v->mass);
     }
+    double most = 0.0; /* formation drag: the largest k_i / m_i */
+    for (unsigned i = 0U; i < n; i++) {
+        most = fmax(most, pl->position[i].air_k / pl->position[i].mass);
+    }
+    pl->formation_air_k = fmax(0.0, (most * o->mass) - o->air_k);
     o->power_max = p_per_kg * o->mass;               /* eq. 4.4 */
     o->traction_max = t_per_kg * o->mass;
     o->fuel_per_j = 1.0 / ((eta_sum / n) * (cfg->env->fuel_energy_j_ml * 1000.0));
@@ -109,6 +114,14 @@ double ref_object_resistance(const ref_platoon_t *pl, double speed, double grade
 double ref_wheel_force_max(double power_max, double traction_max, double speed)
 {
     return (speed <= 0.0) ? traction_max : fmin(power_max / speed, traction_max);
+}
+
+double ref_platoon_force_max(const ref_platoon_t *pl, double speed)
+{
+    const ref_vehicle_t *o = &pl->object;
+    const double f = ref_wheel_force_max(o->power_max, o->traction_max, speed) -
+                     (pl->formation_air_k * speed * speed);
+    return fmax(f, -o->brake_max);
 }
 
 double ref_fuel_rate(double force, double speed, double power_aux, double fuel_per_j)
@@ -168,8 +181,7 @@ int ref_sim_init(ref_sim_t *sim, const ref_platoon_t *pl, const pfe_cruise_calib
     sim->accel = 0.0;
     const ref_vehicle_t *o = &pl->object;
     const double hold = ref_object_resistance(pl, initial_speed, road->grade[0]);
-    sim->wheel_force = clamp(hold, -o->brake_max,
-                             ref_wheel_force_max(o->power_max, o->traction_max, initial_speed));
+    sim->wheel_force = clamp(hold, -o->brake_max, ref_platoon_force_max(pl, initial_speed));
     ref_pi_init(&sim->pi, o->mass * cruise->kp_milli_per_s / 1000.0,
                 o->mass * cruise->ki_milli_per_s2 / 1000.0, sim->wheel_force);
     return 0;
@@ -191,7 +203,7 @@ int ref_sim_step(ref_sim_t *sim, const ref_road_t *road)
     const double dt = ds / v;
     const double grade = road_grade(road, sim->position + (ds / 2.0));
     const double resist = ref_object_resistance(pl, v, grade);
-    const double f_max = ref_wheel_force_max(o->power_max, o->traction_max, v);
+    const double f_max = ref_platoon_force_max(pl, v);
     const double force = ref_pi_step(&sim->pi, sim->set_speed - v, dt, -o->brake_max, f_max);
     const double accel = clamp((force - resist) / o->mass, -ACCEL_MAX, ACCEL_MAX);
     sim->speed = clamp(v + (accel * dt), 0.0, SPEED_MAX);

@@ -35,6 +35,7 @@ typedef struct {
     unsigned n_vehicles;
     double gap;         /* m */
     double gravity;     /* m/s^2 */
+    double formation_air_k; /* N per (m/s)^2: M max_i(k_i / m_i) - sum k_i (pfe_platoon.h) */
     ref_vehicle_t object;
     ref_vehicle_t position[PFE_MAX_VEHICLES];
 } ref_platoon_t;
@@ -52,6 +53,9 @@ double ref_vehicle_resistance(const ref_vehicle_t *v, double speed, double grade
 /* Object model resistance, small-angle (eq. 4.6 to 4.10). */
 double ref_object_resistance(const ref_platoon_t *pl, double speed, double grade);
 double ref_wheel_force_max(double power_max, double traction_max, double speed);
+/* The object model's force limit: ref_wheel_force_max of the platoon minus
+ * the formation drag formation_air_k v^2, at least -brake_max. */
+double ref_platoon_force_max(const ref_platoon_t *pl, double speed);
 /* eq. 3.8 to 3.11 in L/s; 0 when force <= 0. */
 double ref_fuel_rate(double force, double speed, double power_aux, double fuel_per_j);
 

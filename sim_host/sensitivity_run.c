@@ -198,7 +198,7 @@ int sens_run(const sens_setup_t *setup, const road_profile_t *road, sens_param_t
     double limited_s = 0.0;
     for (;;) {
         const double v = sim.speed;
-        const double f_max = ref_wheel_force_max(pl.object.power_max, pl.object.traction_max, v);
+        const double f_max = ref_platoon_force_max(&pl, v);
         const double t0 = sim.time;
         const int rc = ref_sim_step(&sim, &rroad);
         if (rc == 0) {

@@ -77,6 +77,32 @@ static void test_pi_saturates_without_windup(void **state)
     assert_int_equal(pfe_pi_step(&pi, 0, ONE_S_Q16, 30, 10), 10);
 }
 
+static void test_pi_in_range_is_the_checked_step(void **state)
+{
+    (void)state;
+    /* For limits in order and within range and dt <= 16 s the unchecked
+     * step gives the checked one's output and integrator, bit for bit. */
+    uint32_t x = 12345U;
+    for (int k = 0; k < 20000; k++) {
+        pfe_pi_t a;
+        pfe_pi_t b;
+        x = (x * 1103515245U) + 12345U;
+        const int32_t lo = -(int32_t)(x % 4000000U);
+        x = (x * 1103515245U) + 12345U;
+        const int32_t hi = lo + (int32_t)(x % 8000000U);
+        x = (x * 1103515245U) + 12345U;
+        const int32_t start = (int32_t)(x % 8000000U) - 4000000;
+        x = (x * 1103515245U) + 12345U;
+        const int32_t err = (int32_t)(x % 80000000U) - 40000000;
+        x = (x * 1103515245U) + 12345U;
+        const uint32_t dt = x % (PFE_PI_DT_MAX_Q16 + 1U);
+        pfe_pi_init(&a, (int64_t)(x % 1000U) << 30, (int64_t)(x % 777U) << 28, start);
+        b = a;
+        assert_int_equal(pfe_pi_step_in_range(&a, err, dt, lo, hi), pfe_pi_step(&b, err, dt, lo, hi));
+        assert_int_equal(a.integral_q4, b.integral_q4);
+    }
+}
+
 static void test_flat_road_needs_129_kw(void **state)
 {
     (void)state;
@@ -114,6 +140,27 @@ static void test_two_percent_upgrade_settles_at_73_7_kmh(void **state)
     /* At full power: Pmax / v (v of the step start, within a mm/s of the end). */
     const int32_t f_max = pfe_wheel_force_max_n(250000U, 100000U, pfe_sim_speed_mm_s(&sim));
     assert_in_range(sim.wheel_force_n, f_max - 2, f_max + 2);
+}
+
+static void test_platoon_climbs_at_its_lead_trucks_pace(void **state)
+{
+    (void)state;
+    /* Five trucks 10 m apart: the lead truck, with 8 % less drag against
+     * the followers' 31 to 35 %, holds 250 kW / v = 3.87 * 0.92 v^2 +
+     * 2746.8 + 7848 N at v = 20.641 m/s (74.31 km/h); the platoon keeps its
+     * formation at that speed. With the average drag (3.56 / 5 of a truck's)
+     * it would climb at 21.140 m/s (76.10 km/h). */
+    const pfe_platoon_t pl = platoon_of(5U, &pfe_default_drag);
+    const pfe_road_t road = constant_road(20000);
+    pfe_sim_t sim;
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 10000U), PFE_OK);
+    while (pfe_sim_step(&sim, &road) == PFE_SIM_RUNNING) {
+    }
+    assert_in_range(pfe_sim_speed_mm_s(&sim), 20641 - 5, 20641 + 5);
+    /* At the limit: 1.25 MW / v less 1.04 * 3.87 v^2 = 58844 N. */
+    assert_in_range(sim.wheel_force_n, 58844 - 20, 58844 + 20);
+    assert_in_range(pfe_platoon_force_max_n(&pl, pfe_sim_speed_mm_s(&sim)), sim.wheel_force_n - 3,
+                    sim.wheel_force_n + 3);
 }
 
 static void test_no_fuel_while_coasting_downhill(void **state)
@@ -228,8 +275,10 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pi_proportional_and_integral),
         cmocka_unit_test(test_pi_saturates_without_windup),
+        cmocka_unit_test(test_pi_in_range_is_the_checked_step),
         cmocka_unit_test(test_flat_road_needs_129_kw),
         cmocka_unit_test(test_two_percent_upgrade_settles_at_73_7_kmh),
+        cmocka_unit_test(test_platoon_climbs_at_its_lead_trucks_pace),
         cmocka_unit_test(test_no_fuel_while_coasting_downhill),
         cmocka_unit_test(test_n_identical_trucks_without_slipstream_burn_n_times_one),
         cmocka_unit_test(test_too_steep_stalls_with_error),

@@ -121,6 +121,21 @@ static void test_platoon_aggregates(void **state)
     assert_int_equal(g.along_um_s2, 196200);
     assert_int_equal(g.normal_um_s2, 9810000);
     assert_in_range(pfe_vehicle_resistance_n(&pl.object, 0, &g), 52974 - 1, 52974 + 1);
+    /* Formation drag: the lead truck has the most drag per kg, so
+     * c = 5 * 0.92 k - (0.92 + 0.69 + 3 * 0.65) k = 1.04 k, k = 3.87 N/(m/s)^2:
+     * 4.0248e-6 N/(mm/s)^2 * 2^32 = 17286.4; at 25 m/s 2515.5 N off
+     * 1.25 MW / 25 m/s = 50000 N. */
+    assert_in_range(pl.formation_air_q32, 17286 - 2, 17286 + 2);
+    assert_in_range(pfe_platoon_force_max_n(&pl, 25000), 47484, 47485);
+    /* At 0 m/s the traction limit is left whole; far above any cruise
+     * speed the limit never falls below -Fb_max. */
+    assert_int_equal(pfe_platoon_force_max_n(&pl, 0), (int32_t)pl.object.traction_max_n);
+    /* 1250000 W / 70 m/s = 17857 N less 17286 * 4.9e9 / 2^32 = 19721 N. */
+    assert_in_range(pfe_platoon_force_max_n(&pl, PFE_SPEED_MAX_MM_S), 17857 - 19721 - 1,
+                    17857 - 19721 + 1);
+    pfe_platoon_t steep = pl;
+    steep.formation_air_q32 = (int64_t)1 << 22; /* the documented largest c */
+    assert_int_equal(pfe_platoon_force_max_n(&steep, PFE_SPEED_MAX_MM_S), -300000);
     /* eq. 4.3: 2000 N on 200 t is 0.01 m/s^2. */
     assert_int_equal(pfe_platoon_accel_um_s2(&pl, 2000 * 4), 10000);
     assert_int_equal(pfe_platoon_accel_um_s2(&pl, -2000 * 4), -10000);
