@@ -97,6 +97,7 @@ thesis-bench: $(HOST)/platoon_compare $(VALGRIND_STAMP)
 
 thesis-report: $(HOST)/platoon_compare $(HOST)/route_choice
 	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5
+	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5 --length-m 16.5 --repeat 1
 	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5 --no-drag-reduction --repeat 1
 	$(HOST)/route_choice $(ROUTES)/ridge.csv $(ROUTES)/detour.csv $(ROUTES)/rolling.csv
 	$(HOST)/route_choice $(ROUTES)/ridge.csv $(ROUTES)/bypass.csv
