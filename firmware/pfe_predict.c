@@ -449,9 +449,10 @@ pfe_predict_phase_t pfe_predict_run(pfe_predict_t *p, const pfe_preview_t *pv, u
                 break;
             }
             const uint32_t rest = p->n_samples - p->n_done;
-            const uint32_t want = (left <= (rest / PFE_PREDICT_LOAD_PER_UNIT))
-                                      ? (left * PFE_PREDICT_LOAD_PER_UNIT)
-                                      : rest;
+            uint32_t want = rest;
+            if (left <= (rest / PFE_PREDICT_LOAD_PER_UNIT)) {
+                want = left * PFE_PREDICT_LOAD_PER_UNIT;
+            }
             const uint32_t got = pfe_preview_copy_ppm(pv, p->n_done, want, &p->grade_ppm[p->n_done]);
             if (got != want) {
                 abandon(p, PFE_PREDICT_ENOPREVIEW);
@@ -465,9 +466,10 @@ pfe_predict_phase_t pfe_predict_run(pfe_predict_t *p, const pfe_preview_t *pv, u
                 p->phase = PFE_PREDICT_WINDOWS;
             }
         } else if (p->phase == PFE_PREDICT_WINDOWS) {
-            const uint32_t most = (left < (UINT32_MAX / PFE_PREDICT_WINDOW_PER_UNIT))
-                                      ? (left * PFE_PREDICT_WINDOW_PER_UNIT)
-                                      : UINT32_MAX;
+            uint32_t most = UINT32_MAX;
+            if (left < (UINT32_MAX / PFE_PREDICT_WINDOW_PER_UNIT)) {
+                most = left * PFE_PREDICT_WINDOW_PER_UNIT;
+            }
             const uint32_t done = window_suffix(p, most);
             cost += (done + PFE_PREDICT_WINDOW_PER_UNIT - 1U) / PFE_PREDICT_WINDOW_PER_UNIT;
             if (p->win_pos == 0U) {
