@@ -72,6 +72,8 @@ static void abandon(pfe_predict_t *p, int why)
 
 /* cw Af 1/2 rho of position i without its drag reduction: air_q32 /
  * (1 - phi_i). A reduction of 100 % (not in any real table) keeps air_q32. */
+static void loading_begin(pfe_predict_t *p);
+
 static int64_t air_unreduced_q32(const pfe_vehicle_t *v)
 {
     const uint32_t keep_bp = (v->reduction_bp < 10000U) ? (10000U - v->reduction_bp) : 10000U;
@@ -141,17 +143,17 @@ int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t previe
     const uint64_t window_mm = (uint64_t)followers * platoon->gap_mm;
     const uint64_t w = (window_mm + spacing_mm - 1U) / spacing_mm;
     p->window_samples = (w > PFE_PREVIEW_MAX_SAMPLES) ? PFE_PREVIEW_MAX_SAMPLES : (uint32_t)w;
-    p->n_done = 0U;
     if (!p->prepared || (p->prepared_serial != preview_serial) ||
-        (p->n_samples != (uint32_t)pv->sample_count) || (p->spacing_mm != spacing_mm)) {
+        (p->n_samples != (uint32_t)pv->sample_count) || (p->spacing_mm != spacing_mm) ||
+        (p->prepared_window != p->window_samples)) {
+        /* A new preview, or another platoon length (5.10): copied anew
+         * with the first pass of the windows. */
         p->prepared = false;
         p->prepared_serial = preview_serial;
+        p->prepared_window = p->window_samples;
         p->n_samples = pv->sample_count;
         p->spacing_mm = spacing_mm;
-        p->phase = PFE_PREDICT_LOADING;
-    } else if (p->prepared_window != p->window_samples) {
-        p->prepared = false; /* another platoon length: only the windows change */
-        p->phase = PFE_PREDICT_WINDOW_LOW;
+        loading_begin(p);
     } else {
         p->phase = PFE_PREDICT_NOMINAL;
     }
@@ -188,76 +190,154 @@ static int start_run(pfe_predict_t *p)
     return rc;
 }
 
-/* True when s beats g as the window's extreme (ties too: the later sample
- * stays in the window longer). */
-static bool beats(int32_t s, int32_t g, bool upper)
+/* Window extremes, both at once and in O(1) per sample for any window
+ * (van Herk / Gil-Werman). With m = 2 w + 1, sample i at position
+ * u = i + w of a preview padded by w neutral samples on either side, and
+ * the positions cut into blocks of m, the window of sample k is
+ * u = k .. k + m - 1: the tail of one block and the head of the next (or
+ * one whole block). Its extreme is that of the prefix extreme P[k + m - 1]
+ * within the second block and the suffix extreme S[k] within the first.
+ * LOADING computes P while it copies the samples and writes P[k + m - 1]
+ * to the outputs; WINDOWS computes S from the last position down and folds
+ * it in. Preview grades are multiples of 20 ppm within +-PFE_GRADE_MAX_PPM:
+ * the division is exact, every extreme fits int16_t, and the neutral values
+ * lie beyond every grade (each window holds its own sample: no output is
+ * neutral). */
+#define WIN_NEUTRAL_HIGH (-32768)
+#define WIN_NEUTRAL_LOW 32767
+
+/* Sets up the first pass at position w (sample 0); LOADING. */
+static void loading_begin(pfe_predict_t *p)
 {
-    return upper ? (s >= g) : (s <= g);
+    const uint32_t m = (2U * p->window_samples) + 1U;
+    p->n_done = 0U;
+    p->win_low = WIN_NEUTRAL_LOW;
+    p->win_high = WIN_NEUTRAL_HIGH;
+    p->win_block_left = m - (p->window_samples % m); /* positions w .. m - 1 */
+    p->phase = PFE_PREDICT_LOADING;
 }
 
-/* Window extremes for the preview's samples n_done .. n_done + count - 1:
- * largest (upper) or smallest grade within window_samples on either side. A
- * monotonic queue of candidates (each sample enters and leaves it once):
- * its front is the window's extreme. Windows wider than the queue are
- * scanned sample by sample. Returns the samples compared. */
-static uint32_t window_extremes(pfe_predict_t *p, bool upper, uint32_t count)
+/* First pass over the copied samples i0 .. i1 - 1: clamps them in place and
+ * writes P[u] to output u - 2 w (sample i - w). Past the last sample, the
+ * padding's positions n + w .. n + 2 w - 1 complete the outputs. The loops
+ * run a block's stretch at a time (win_block_left positions to its end). */
+static void window_prefix(pfe_predict_t *p, uint32_t i0, uint32_t i1)
 {
-    const int32_t *grade = p->grade_ppm;
-    int16_t *out = upper ? p->window_high_20ppm : p->window_low_20ppm;
+    int32_t *grade = p->grade_ppm;
+    int16_t *out_low = p->window_low_20ppm;
+    int16_t *out_high = p->window_high_20ppm;
     const uint32_t n = p->n_samples;
     const uint32_t w = p->window_samples;
-    const uint32_t end = ((p->n_done + count) < n) ? (p->n_done + count) : n;
-    uint32_t compared = 0U;
-    if (((2U * w) + 1U) >= PFE_PREDICT_WINDOW_QUEUE) {
-        for (uint32_t k = p->n_done; k < end; k++) {
-            const uint32_t lo = (k > w) ? (k - w) : 0U;
-            const uint32_t hi = ((k + w) < n) ? (k + w) : (n - 1U);
-            int32_t g = grade[lo];
-            for (uint32_t j = lo + 1U; j <= hi; j++) {
-                g = beats(grade[j], g, upper) ? grade[j] : g;
+    const uint32_t m = (2U * w) + 1U;
+    int32_t low = p->win_low;
+    int32_t high = p->win_high;
+    uint32_t left = p->win_block_left;
+    uint32_t i = i0;
+    while (i < i1) {
+        const uint32_t end = ((i1 - i) < left) ? i1 : (i + left);
+        left -= end - i;
+        /* samples before w: positions before the first window's end */
+        const uint32_t quiet_end = (end < w) ? end : w;
+        for (; i < quiet_end; i++) {
+            const int32_t g = pfe_clamp_i32(grade[i], -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM);
+            grade[i] = g;
+            low = ((g / 20) < low) ? (g / 20) : low;
+            high = ((g / 20) > high) ? (g / 20) : high;
+        }
+        for (; i < end; i++) {
+            const int32_t g = pfe_clamp_i32(grade[i], -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM);
+            grade[i] = g;
+            low = ((g / 20) < low) ? (g / 20) : low;
+            high = ((g / 20) > high) ? (g / 20) : high;
+            out_low[i - w] = (int16_t)low;
+            out_high[i - w] = (int16_t)high;
+        }
+        if (left == 0U) {
+            low = WIN_NEUTRAL_LOW;
+            high = WIN_NEUTRAL_HIGH;
+            left = m;
+        }
+    }
+    if (i1 == n) {
+        for (uint32_t u = n + w; u < (n + (2U * w)); u++) {
+            if (u >= (2U * w)) {
+                out_low[u - (2U * w)] = (int16_t)low;
+                out_high[u - (2U * w)] = (int16_t)high;
             }
-            compared += hi - lo + 1U;
-            /* Preview grades are multiples of 20 ppm within +-PFE_GRADE_MAX_PPM. */
-            out[k] = (int16_t)(g / 20);
-        }
-        p->n_done = end;
-        return compared;
-    }
-    if (p->n_done == 0U) {
-        p->win_head = 0U;
-        p->win_count = 0U;
-        p->win_next = 0U;
-    }
-    uint32_t head = p->win_head;
-    uint32_t cnt = p->win_count;
-    uint32_t next = p->win_next;
-    for (uint32_t k = p->n_done; k < end; k++) {
-        const uint32_t hi = ((k + w) < n) ? (k + w) : (n - 1U);
-        for (; next <= hi; next++) {
-            /* Candidates the new sample beats can never be the extreme again. */
-            while ((cnt > 0U) &&
-                   beats(grade[next],
-                         grade[p->win_queue[(head + cnt - 1U) % PFE_PREDICT_WINDOW_QUEUE]], upper)) {
-                cnt--;
-                compared++;
+            left--;
+            if (left == 0U) {
+                low = WIN_NEUTRAL_LOW;
+                high = WIN_NEUTRAL_HIGH;
+                left = m;
             }
-            p->win_queue[(head + cnt) % PFE_PREDICT_WINDOW_QUEUE] = (uint16_t)next;
-            cnt++;
-            compared++;
         }
-        const uint32_t lo = (k > w) ? (k - w) : 0U;
-        while (p->win_queue[head] < lo) {
-            head = (head + 1U) % PFE_PREDICT_WINDOW_QUEUE;
-            cnt--;
-        }
-        /* Preview grades are multiples of 20 ppm within +-PFE_GRADE_MAX_PPM. */
-        out[k] = (int16_t)(grade[p->win_queue[head]] / 20);
+        /* the second pass starts at the last sample's position */
+        low = WIN_NEUTRAL_LOW;
+        high = WIN_NEUTRAL_HIGH;
+        p->win_pos = n + w;
+        left = ((n - 1U + w) % m) + 1U;
     }
-    p->win_head = head;
-    p->win_count = cnt;
-    p->win_next = next;
-    p->n_done = end;
-    return compared;
+    p->win_block_left = left;
+    p->win_low = low;
+    p->win_high = high;
+}
+
+/* Second pass: up to count positions, from win_pos - 1 down; folds S[u]
+ * into output u. Returns the positions done. */
+static uint32_t window_suffix(pfe_predict_t *p, uint32_t count)
+{
+    const int32_t *grade = p->grade_ppm;
+    int16_t *out_low = p->window_low_20ppm;
+    int16_t *out_high = p->window_high_20ppm;
+    const uint32_t n = p->n_samples;
+    const uint32_t w = p->window_samples;
+    const uint32_t m = (2U * w) + 1U;
+    int32_t low = p->win_low;
+    int32_t high = p->win_high;
+    uint32_t left = p->win_block_left;
+    uint32_t u = p->win_pos;
+    const uint32_t stop = (u > count) ? (u - count) : 0U;
+    /* positions of samples: u - 1 >= w */
+    const uint32_t sample_stop = (stop > w) ? stop : w;
+    while (u > sample_stop) {
+        const uint32_t end = ((u - sample_stop) < left) ? sample_stop : (u - left);
+        left -= u - end;
+        /* positions past the last output */
+        const uint32_t quiet_end = (end > n) ? end : n;
+        for (; u > quiet_end; u--) {
+            const int32_t g20 = grade[u - 1U - w] / 20;
+            low = (g20 < low) ? g20 : low;
+            high = (g20 > high) ? g20 : high;
+        }
+        for (; u > end; u--) {
+            const int32_t g20 = grade[u - 1U - w] / 20;
+            low = (g20 < low) ? g20 : low;
+            high = (g20 > high) ? g20 : high;
+            out_low[u - 1U] = (low < out_low[u - 1U]) ? (int16_t)low : out_low[u - 1U];
+            out_high[u - 1U] = (high > out_high[u - 1U]) ? (int16_t)high : out_high[u - 1U];
+        }
+        if (left == 0U) {
+            low = WIN_NEUTRAL_LOW;
+            high = WIN_NEUTRAL_HIGH;
+            left = m;
+        }
+    }
+    if (u <= w) {
+        /* Positions below w: padding, within block 0 (0 .. 2 w) with sample
+         * 0: S stays that of position w. Those of no sample are skipped. */
+        const uint32_t top = (u < n) ? u : n;
+        u = (top > stop) ? top : stop;
+        for (; u > stop; u--) {
+            out_low[u - 1U] = (low < out_low[u - 1U]) ? (int16_t)low : out_low[u - 1U];
+            out_high[u - 1U] = (high > out_high[u - 1U]) ? (int16_t)high : out_high[u - 1U];
+        }
+    }
+    const uint32_t done = p->win_pos - u;
+    p->win_low = low;
+    p->win_high = high;
+    p->win_block_left = left;
+    p->win_pos = u;
+    return done;
 }
 
 /* m (v_end^2 - v_start^2) / 2 as fuel at fq [nL/mJ * 2^20], m = M or
@@ -368,37 +448,33 @@ pfe_predict_phase_t pfe_predict_run(pfe_predict_t *p, const pfe_preview_t *pv, u
                 abandon(p, PFE_PREDICT_ENOPREVIEW); /* the preview changed under us */
                 break;
             }
-            uint32_t want = left * PFE_PREDICT_LOAD_PER_UNIT;
-            want = (want < (p->n_samples - p->n_done)) ? want : (p->n_samples - p->n_done);
+            const uint32_t rest = p->n_samples - p->n_done;
+            uint32_t want = rest;
+            if (left <= (rest / PFE_PREDICT_LOAD_PER_UNIT)) {
+                want = left * PFE_PREDICT_LOAD_PER_UNIT;
+            }
             const uint32_t got = pfe_preview_copy_ppm(pv, p->n_done, want, &p->grade_ppm[p->n_done]);
             if (got != want) {
                 abandon(p, PFE_PREDICT_ENOPREVIEW);
                 break;
             }
-            for (uint32_t k = p->n_done; k < (p->n_done + got); k++) {
-                p->grade_ppm[k] = pfe_clamp_i32(p->grade_ppm[k], -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM);
-            }
+            window_prefix(p, p->n_done, p->n_done + got);
             p->n_done += got;
             cost += (got + PFE_PREDICT_LOAD_PER_UNIT - 1U) / PFE_PREDICT_LOAD_PER_UNIT;
             if (p->n_done == p->n_samples) {
                 p->n_done = 0U;
-                p->phase = PFE_PREDICT_WINDOW_LOW;
+                p->phase = PFE_PREDICT_WINDOWS;
             }
-        } else if ((p->phase == PFE_PREDICT_WINDOW_LOW) || (p->phase == PFE_PREDICT_WINDOW_HIGH)) {
-            const bool upper = p->phase == PFE_PREDICT_WINDOW_HIGH;
-            /* A unit: PFE_PREDICT_WINDOW_PER_UNIT samples, plus one per
-             * PFE_PREDICT_WINDOW_PER_UNIT * 4 comparisons of rescans. */
-            const uint32_t compared = window_extremes(p, upper, PFE_PREDICT_WINDOW_PER_UNIT);
-            cost += 1U + (compared / (PFE_PREDICT_WINDOW_PER_UNIT * 4U));
-            if (p->n_done == p->n_samples) {
-                p->n_done = 0U;
-                if (upper) {
-                    p->prepared = true;
-                    p->prepared_window = p->window_samples;
-                    p->phase = PFE_PREDICT_NOMINAL;
-                } else {
-                    p->phase = PFE_PREDICT_WINDOW_HIGH;
-                }
+        } else if (p->phase == PFE_PREDICT_WINDOWS) {
+            uint32_t most = UINT32_MAX;
+            if (left < (UINT32_MAX / PFE_PREDICT_WINDOW_PER_UNIT)) {
+                most = left * PFE_PREDICT_WINDOW_PER_UNIT;
+            }
+            const uint32_t done = window_suffix(p, most);
+            cost += (done + PFE_PREDICT_WINDOW_PER_UNIT - 1U) / PFE_PREDICT_WINDOW_PER_UNIT;
+            if (p->win_pos == 0U) {
+                p->prepared = true;
+                p->phase = PFE_PREDICT_NOMINAL;
             }
         } else if (!p->sim_ready) {
             /* Setting up a run reads every sample once and divides: it takes

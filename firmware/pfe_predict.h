@@ -12,25 +12,33 @@
  *
  * The work is split across the ECU's ticks: pfe_predict_run() takes a
  * budget of work units (one simulation step, PFE_PREDICT_LOAD_PER_UNIT
- * preview samples copied, or PFE_PREDICT_WINDOW_PER_UNIT samples' grade
- * window) and returns when it is spent, so that no tick exceeds its own
- * budget. Setting up a simulation run (pfe_sim_init(): every sample read
- * once, a few 64-bit divisions) takes a call of its own.
+ * preview samples copied with the windows' first pass, or
+ * PFE_PREDICT_WINDOW_PER_UNIT positions of their second pass: each about
+ * the instructions of a step) and returns when it is spent, so that no
+ * tick exceeds its own budget. Setting up a simulation run
+ * (pfe_sim_init(): every sample read once, a few 64-bit divisions) takes a
+ * call of its own.
  *
  * A prediction goes through
- *   LOADING      copy the preview's samples          } once per preview
- *   WINDOW_LOW   the smallest grade around each sample } (and platoon
- *   WINDOW_HIGH  the largest grade around each sample  }  length, 5.10)
+ *   LOADING      copy the preview's samples, clamped, and  } once per preview
+ *                the first pass of the grade windows       } (and platoon
+ *   WINDOWS      their second pass: the smallest and the   }  length, 5.10)
+ *                largest grade around each sample          }
  *   NOMINAL      the object model with the platoon's own parameters
  *   SLOW         the slowest platoon (no drag reduction): v_min, lower bound
  *   FAST         the fastest platoon (drag reduction at half the gap):
  *                v_max, upper bound
  *   DONE         the result is published, the predictor idle
- * The first three prepare the preview: a later prediction over the same
- * preview (the caller says so with its serial number) starts at NOMINAL,
- * from the sample the vehicle has reached.
- * pfe_predict_start() abandons a prediction in progress and starts anew
- * (a new preview, a new platoon): nothing of the old one survives.
+ * The first two prepare the preview, O(n) for any window (n + w positions
+ * a pass, w the window's half-width in samples): about 58,000 instructions
+ * on the Cortex-M4 for 1000 samples and 5 trucks (tests/bench/m4_bench.c,
+ * predict_first_n5 less predict_whole_n5), against about 930,000 for the
+ * three runs. A later prediction over the same preview (the caller says so
+ * with its serial number) for the same window starts at NOMINAL, from the
+ * sample the vehicle has reached; another platoon length prepares it anew.
+ * pfe_predict_start() abandons a prediction in progress, at any phase, and
+ * starts anew (a new preview, a new platoon): nothing of the old one
+ * survives.
  *
  * Memory: all in pfe_predict_t (about 10.5 KB: the preview's grade, 4 KB,
  * its window extremes at the preview's own 20 ppm resolution, 2 x 2 KB, and
@@ -48,16 +56,14 @@
 #include "pfe_platoon.h"
 #include "pfe_sim.h"
 
-#define PFE_PREDICT_LOAD_PER_UNIT 8U   /* preview samples copied per work unit */
-#define PFE_PREDICT_WINDOW_PER_UNIT 6U  /* grade window samples per work unit */
+#define PFE_PREDICT_LOAD_PER_UNIT 8U    /* preview samples copied (first pass) per work unit */
+#define PFE_PREDICT_WINDOW_PER_UNIT 10U /* positions of the windows' second pass per work unit */
 #define PFE_PREDICT_STEP_MAX_MM 16000U  /* simulation step: the preview's spacing, at most this */
-#define PFE_PREDICT_WINDOW_QUEUE 64U    /* sliding window queue: windows of up to 63 samples */
 
 typedef enum {
     PFE_PREDICT_IDLE = 0,
     PFE_PREDICT_LOADING,
-    PFE_PREDICT_WINDOW_LOW,
-    PFE_PREDICT_WINDOW_HIGH,
+    PFE_PREDICT_WINDOWS,
     PFE_PREDICT_NOMINAL,
     PFE_PREDICT_SLOW,
     PFE_PREDICT_FAST,
@@ -101,11 +107,11 @@ typedef struct {
     uint32_t prepared_window;          /* window_samples the extremes were made for */
     uint32_t n_samples;                /* samples of the preview */
     uint32_t spacing_mm;
-    uint32_t n_done;                   /* samples loaded, or window extremes computed */
-    uint16_t win_queue[PFE_PREDICT_WINDOW_QUEUE]; /* sliding window: candidates' samples */
-    uint32_t win_head;
-    uint32_t win_count;
-    uint32_t win_next;                 /* the next sample to enter the window */
+    uint32_t n_done;                   /* samples loaded */
+    uint32_t win_pos;                  /* WINDOWS: positions left (pfe_predict.c) */
+    uint32_t win_block_left;           /* positions left in the current block */
+    int32_t win_low;                   /* the pass's running extremes, 20 ppm */
+    int32_t win_high;
     int32_t grade_ppm[PFE_PREVIEW_MAX_SAMPLES];
     int16_t window_low_20ppm[PFE_PREVIEW_MAX_SAMPLES];  /* extreme grade around each sample, */
     int16_t window_high_20ppm[PFE_PREVIEW_MAX_SAMPLES]; /* 20 ppm */

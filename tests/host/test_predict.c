@@ -226,13 +226,182 @@ static void test_prepared_preview_is_reused(void **state)
     assert_int_equal(again.fuel_upper_ul, fresh->fuel_upper_ul);
     assert_int_equal(again.time_ms, fresh->time_ms);
     assert_int_equal(again.distance_m, 9000U);
-    /* Another platoon length: only the windows are made again. */
+    /* Another platoon length: prepared anew (its windows are wider). */
     make_platoon(&pl, &cfg, 8U);
     assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial + 100U, 0U, &pl, &pfe_default_drag,
                                        &pfe_default_cruise, 25000, 25000),
                      PFE_OK);
-    assert_int_equal(g_pred.phase, PFE_PREDICT_WINDOW_LOW);
+    assert_int_equal(g_pred.phase, PFE_PREDICT_LOADING);
     road_ppm_free(&road);
+}
+
+/* Grades for the window tests: a fixed pseudo-random walk over the whole
+ * signal range (+-64 %, beyond the module's +-50 % clamp), in 20 ppm steps. */
+static void walk_grades(int32_t *grade, uint32_t n, uint32_t seed)
+{
+    uint32_t x = seed;
+    int32_t g = 0;
+    for (uint32_t k = 0U; k < n; k++) {
+        x = (x * 1103515245U) + 12345U;
+        const int32_t step = (int32_t)((x >> 16) % 2001U) - 1000; /* +-2 % */
+        g += step * 20;
+        g = (g > 640000) ? (640000 - ((g - 640000) * 2)) : g;
+        g = (g < -640000) ? (-640000 + ((-640000 - g) * 2)) : g;
+        grade[k] = ((k % 37U) == 5U) ? 600000 : g; /* now and then beyond the clamp */
+    }
+}
+
+/* The module's grade range, +-50 %. */
+static int32_t clamped(int32_t g)
+{
+    return (g > 500000) ? 500000 : ((g < -500000) ? -500000 : g);
+}
+
+/* Each window extreme by a plain scan of the clamped preview: the largest
+ * and smallest grade of samples k - w .. k + w within the preview. */
+static void check_windows_by_scan(const pfe_predict_t *p, const int32_t *grade, uint32_t n, uint32_t w)
+{
+    assert_int_equal(p->window_samples, w);
+    for (uint32_t k = 0U; k < n; k++) {
+        int32_t lo = INT32_MAX, hi = INT32_MIN;
+        for (uint32_t j = (k > w) ? (k - w) : 0U; (j <= (k + w)) && (j < n); j++) {
+            lo = (clamped(grade[j]) < lo) ? clamped(grade[j]) : lo;
+            hi = (clamped(grade[j]) > hi) ? clamped(grade[j]) : hi;
+        }
+        assert_int_equal(p->window_low_20ppm[k], lo / 20);
+        assert_int_equal(p->window_high_20ppm[k], hi / 20);
+        assert_int_equal(p->grade_ppm[k], clamped(grade[k]));
+    }
+}
+
+/* Prepares a preview of n samples 10 m apart for n_vehicles gap_mm apart,
+ * budget units per call, and checks the windows (window w). */
+static void prepare_and_check(uint32_t n, uint32_t n_vehicles, uint32_t gap_mm, uint32_t budget,
+                              uint32_t w)
+{
+    static int32_t grade[PFE_PREVIEW_MAX_SAMPLES];
+    walk_grades(grade, n, n * 7U + w);
+    pfe_preview_init(&g_pv);
+    send_preview(grade, n, 10U, 6U);
+    pfe_platoon_t pl;
+    pfe_platoon_config_t cfg;
+    pfe_platoon_config_uniform(&cfg, n_vehicles, gap_mm, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    pfe_predict_init(&g_pred);
+    (void)memset(g_pred.window_low_20ppm, 0xA5, sizeof g_pred.window_low_20ppm);
+    (void)memset(g_pred.window_high_20ppm, 0xA5, sizeof g_pred.window_high_20ppm);
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_OK);
+    uint32_t calls = 0U;
+    while ((g_pred.phase == PFE_PREDICT_LOADING) || (g_pred.phase == PFE_PREDICT_WINDOWS)) {
+        (void)pfe_predict_run(&g_pred, &g_pv, budget);
+        calls++;
+        assert_true(calls < 100000U);
+    }
+    assert_int_equal(g_pred.phase, PFE_PREDICT_NOMINAL);
+    check_windows_by_scan(&g_pred, grade, n, w);
+}
+
+/* Windows narrow and wide, one truck (w = 0), windows wider than the
+ * preview, a preview of one sample; one unit a call (every resumption
+ * point of both passes) and all at once. 10 m samples: 4 gaps of g metres
+ * give w = ceil(4 g / 10). */
+static void test_windows_match_a_plain_scan(void **state)
+{
+    (void)state;
+    static const struct {
+        uint32_t n, vehicles, gap_mm, w;
+    } cases[] = {
+        {1000U, 5U, 10000U, 4U},   /* the bench's */
+        {1000U, 5U, 20000U, 8U},
+        {997U, 5U, 75000U, 30U},
+        {1000U, 5U, 80000U, 32U},  /* 65 samples a window */
+        {500U, 5U, 2500000U, 1000U}, /* every window the whole preview */
+        {300U, 1U, 10000U, 0U},    /* one truck: each sample its own window */
+        {1U, 5U, 10000U, 4U},
+        {2U, 2U, 10000U, 1U},
+        {9U, 5U, 10000U, 4U},      /* one block exactly */
+        {10U, 5U, 10000U, 4U},
+    };
+    for (size_t c = 0U; c < (sizeof cases / sizeof cases[0]); c++) {
+        prepare_and_check(cases[c].n, cases[c].vehicles, cases[c].gap_mm, 1U, cases[c].w);
+        prepare_and_check(cases[c].n, cases[c].vehicles, cases[c].gap_mm, UINT32_MAX, cases[c].w);
+    }
+}
+
+/* A restart in the middle of either pass leaves nothing of the old
+ * preparation: the result equals a fresh predictor's on the same inputs. */
+static void test_restart_mid_preparation(void **state)
+{
+    (void)state;
+    static int32_t grade[600], other[600];
+    walk_grades(grade, 600U, 11U);
+    walk_grades(other, 600U, 12U);
+    for (uint32_t k = 0U; k < 600U; k++) { /* drivable: within +-3 % */
+        grade[k] = (grade[k] / 20 % 1500) * 20;
+        other[k] = (other[k] / 20 % 1500) * 20;
+    }
+    pfe_platoon_t pl5, pl8;
+    pfe_platoon_config_t cfg;
+    make_platoon(&pl5, &cfg, 5U);
+    make_platoon(&pl8, &cfg, 8U);
+    /* The reference: the second preview, 8 trucks, on a fresh predictor. */
+    pfe_preview_init(&g_pv);
+    send_preview(other, 600U, 10U, 7U);
+    pfe_predict_init(&g_pred);
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl8, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_OK);
+    (void)run_to_end();
+    const pfe_predict_result_t fresh = *pfe_predict_result(&g_pred);
+    assert_true(fresh.valid);
+    static int16_t low[600], high[600];
+    (void)memcpy(low, g_pred.window_low_20ppm, sizeof low);
+    (void)memcpy(high, g_pred.window_high_20ppm, sizeof high);
+    for (uint32_t stop = 0U; stop < 2U; stop++) {
+        const pfe_predict_phase_t where = (stop == 0U) ? PFE_PREDICT_LOADING : PFE_PREDICT_WINDOWS;
+        /* The first preview, 5 trucks, stopped mid-way through a pass. */
+        pfe_preview_init(&g_pv);
+        send_preview(grade, 600U, 10U, 8U);
+        pfe_predict_init(&g_pred);
+        assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl5, &pfe_default_drag,
+                                           &pfe_default_cruise, 25000, 25000),
+                         PFE_OK);
+        while (g_pred.phase != where) {
+            (void)pfe_predict_run(&g_pred, &g_pv, 1U);
+        }
+        for (uint32_t k = 0U; k < 20U; k++) {
+            assert_int_equal(pfe_predict_run(&g_pred, &g_pv, 1U), where);
+        }
+        /* Same preview, another platoon length: prepared anew. */
+        assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl8, &pfe_default_drag,
+                                           &pfe_default_cruise, 25000, 25000),
+                         PFE_OK);
+        assert_int_equal(g_pred.phase, PFE_PREDICT_LOADING);
+        while (g_pred.phase != where) {
+            (void)pfe_predict_run(&g_pred, &g_pv, 1U);
+        }
+        for (uint32_t k = 0U; k < 20U; k++) {
+            (void)pfe_predict_run(&g_pred, &g_pv, 1U);
+        }
+        /* A new preview arrives: the predictor restarts on it. */
+        send_preview(other, 600U, 10U, 9U);
+        assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl8, &pfe_default_drag,
+                                           &pfe_default_cruise, 25000, 25000),
+                         PFE_OK);
+        assert_int_equal(g_pred.phase, PFE_PREDICT_LOADING);
+        (void)run_to_end();
+        const pfe_predict_result_t *r = pfe_predict_result(&g_pred);
+        assert_true(r->valid);
+        assert_int_equal(r->fuel_ul, fresh.fuel_ul);
+        assert_int_equal(r->fuel_lower_ul, fresh.fuel_lower_ul);
+        assert_int_equal(r->fuel_upper_ul, fresh.fuel_upper_ul);
+        assert_int_equal(r->time_ms, fresh.time_ms);
+        assert_memory_equal(g_pred.window_low_20ppm, low, sizeof low);
+        assert_memory_equal(g_pred.window_high_20ppm, high, sizeof high);
+    }
 }
 
 static void test_flat_one_truck_literals(void **state)
@@ -333,6 +502,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_hilly_from_halfway),
         cmocka_unit_test(test_prepared_preview_is_reused),
         cmocka_unit_test(test_refusals_and_restart),
+        cmocka_unit_test(test_windows_match_a_plain_scan),
+        cmocka_unit_test(test_restart_mid_preparation),
     };
     return cmocka_run_group_tests_name("predict", tests, NULL, NULL);
 }
