@@ -124,9 +124,11 @@ int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t previe
     int64_t air_min = INT64_MAX;
     int64_t fq_max = 0;
     int64_t fq_min = INT64_MAX;
+    int64_t mass_min_q32 = INT64_MAX;
     uint64_t keep_sum_bp = 0U;
     for (uint32_t i = 0U; i < n; i++) {
         const pfe_vehicle_t *v = &platoon->position[i];
+        mass_min_q32 = (v->mass_q32 < mass_min_q32) ? v->mass_q32 : mass_min_q32;
         const int64_t a = air_unreduced_q32(v);
         air_max = (a > air_max) ? a : air_max;
         air_min = (a < air_min) ? a : air_min;
@@ -137,6 +139,12 @@ int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t previe
     /* air < 2^22 (pfe_sim.c), times N <= 32 or times keep_sum <= 32e4: below 2^41. */
     p->air_slow_q32 = air_max * (int64_t)n;
     p->air_fast_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)air_min * keep_sum_bp, 10000U);
+    /* Every truck of the slow platoon has the drag air_max; the lightest has
+     * the most per kg. air_max < 2^17 per truck times M < 2^35 (as
+     * mass_q32): below 2^52; mass_min_q32 > 0 (a checked calibration). */
+    const int64_t most = (int64_t)pfe_udiv_round_u64(
+        (uint64_t)air_max * (uint64_t)platoon->object.mass_q32, (uint64_t)mass_min_q32);
+    p->formation_slow_q32 = (most > p->air_slow_q32) ? (most - p->air_slow_q32) : 0;
     p->fuel_upper_q20 = fq_max;
     p->fuel_lower_q20 = fq_min;
     const uint32_t followers = n - 1U;
@@ -170,6 +178,7 @@ static int start_run(pfe_predict_t *p)
     if (bound) {
         p->bound = *p->platoon;
         p->bound.object.air_q32 = upper ? p->air_fast_q32 : p->air_slow_q32;
+        p->bound.formation_air_q32 = upper ? 0 : p->formation_slow_q32;
         pl = &p->bound;
     }
     const uint32_t step = (p->road.spacing_mm < PFE_PREDICT_STEP_MAX_MM) ? p->road.spacing_mm

@@ -434,6 +434,40 @@ static void test_flat_one_truck_literals(void **state)
     road_ppm_free(&road);
 }
 
+static void test_bound_platoons_formation_drag(void **state)
+{
+    (void)state;
+    road_ppm_t road;
+    load_road("flat", &road);
+    pfe_preview_init(&g_pv);
+    send_preview(road.grade_ppm, road.n_samples, road.spacing_mm / 1000U, 0U);
+    /* Four default trucks and a 30 t one: M = 190 t. The slow platoon gives
+     * every truck the unreduced 3.87 N/(m/s)^2 (16621.6 * 2^-32 N/(mm/s)^2),
+     * and the 30 t truck has the most per kg: c = 16621.6 (190 / 30 - 5) =
+     * 22162. The nominal platoon's lead truck has 0.92 of it on 40 t, more
+     * per kg than the 30 t follower's 0.65 (0.023 against 0.0217), so
+     * c = 16621.6 (0.92 * 190 / 40 - (0.92 + 0.69 + 3 * 0.65)) = 13463.
+     * The fast platoon has none. */
+    static const pfe_vehicle_calib_t light = {30000U, 1200U, 6000000U, 7000U, 250000U, 100000U,
+                                              60000U, 4000U, 400000U};
+    pfe_platoon_config_t cfg;
+    pfe_platoon_config_uniform(&cfg, 5U, 10000U, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    cfg.vehicle[4] = &light;
+    pfe_platoon_t pl;
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    assert_in_range(pl.formation_air_q32, 13463 - 3, 13463 + 3);
+    pfe_predict_init(&g_pred);
+    assert_int_equal(pfe_predict_start(&g_pred, &g_pv, g_serial, 0U, &pl, &pfe_default_drag,
+                                       &pfe_default_cruise, 25000, 25000),
+                     PFE_OK);
+    assert_in_range(g_pred.formation_slow_q32, 22162 - 3, 22162 + 3);
+    (void)run_to_end();
+    assert_true(pfe_predict_result(&g_pred)->valid);
+    assert_int_equal(g_pred.bound.formation_air_q32, 0); /* the fast run was the last */
+    road_ppm_free(&road);
+}
+
 static void test_refusals_and_restart(void **state)
 {
     (void)state;
@@ -501,6 +535,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_hilly_n5_within_one_percent),
         cmocka_unit_test(test_hilly_from_halfway),
         cmocka_unit_test(test_prepared_preview_is_reused),
+        cmocka_unit_test(test_bound_platoons_formation_drag),
         cmocka_unit_test(test_refusals_and_restart),
         cmocka_unit_test(test_windows_match_a_plain_scan),
         cmocka_unit_test(test_restart_mid_preparation),

@@ -1,9 +1,9 @@
 /*
  * Unit tests: the extreme grades around each preview sample that bound the
  * prediction (pfe_predict.h, window_low_20ppm / window_high_20ppm), for a
- * window narrow enough for the sliding-window queue and for one too wide
- * for it (2 w + 1 >= PFE_PREDICT_WINDOW_QUEUE), on a preview with one bump
- * and one dip whose windows can be drawn by hand.
+ * narrow window and for a wide one (which the block method of
+ * pfe_predict.c handles at the same cost per sample), on a preview with
+ * one bump and one dip whose windows can be drawn by hand.
  */
 #include <setjmp.h>
 #include <stdarg.h>
