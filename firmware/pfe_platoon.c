@@ -84,10 +84,11 @@ int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
             most = i;
         }
     }
-    /* air < 2^17 times M < 2^22: below 2^39. */
+    /* air < 2^17 times M < 2^22: below 2^39; c <= N max air <= 2^22. */
     const int64_t formation = (int64_t)pfe_udiv_round_u64((uint64_t)pl->position[most].air_q32 * mass,
                                                           cfg->vehicle[most]->mass_kg) - obj->air_q32;
-    pl->formation_air_q32 = (formation > 0) ? formation : 0;
+    const int64_t c_max = (int64_t)PFE_FORMATION_AIR_MAX_Q32;
+    pl->formation_air_q32 = (uint32_t)((formation < 0) ? 0 : ((formation > c_max) ? c_max : formation));
     const pfe_vehicle_calib_t *wp = cfg->vehicle[weakest(cfg, 1)];
     const pfe_vehicle_calib_t *wt = cfg->vehicle[weakest(cfg, 0)];
     pl->n_vehicles = n;
@@ -113,13 +114,8 @@ int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
 
 int32_t pfe_platoon_force_max_n(const pfe_platoon_t *pl, int32_t speed_mm_s)
 {
-    const pfe_vehicle_t *obj = &pl->object;
     const int32_t v = pfe_clamp_i32(speed_mm_s, 0, PFE_SPEED_MAX_MM_S);
-    /* formation < 2^22 times v^2 < 2^33: below 2^55; the result < 2^23 N. */
-    const int64_t drag = pfe_rshift_round(pl->formation_air_q32 * ((int64_t)v * v), 32U);
-    const int64_t f = (int64_t)pfe_wheel_force_max_n(obj->power_max_w, obj->traction_max_n, v) - drag;
-    const int64_t lo = -(int64_t)obj->brake_max_n;
-    return (int32_t)((f < lo) ? lo : f);
+    return pfe_platoon_force_max_v2_n(&pl->object, pl->formation_air_q32, v, (uint64_t)v * (uint32_t)v);
 }
 
 void pfe_platoon_grade_accel(const pfe_platoon_t *pl, int32_t grade_ppm, pfe_grade_accel_t *out)

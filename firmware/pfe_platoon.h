@@ -38,6 +38,10 @@
 #include "pfe_calib.h"
 #include "pfe_vehicle.h"
 
+/* The largest formation drag c: N trucks' largest air_q32 (< 2^17 each),
+ * 32 of them: 2^22. */
+#define PFE_FORMATION_AIR_MAX_Q32 4194304U
+
 typedef struct {
     uint32_t n_vehicles;                                /* 1 .. PFE_MAX_VEHICLES */
     uint32_t gap_mm;                                    /* d, the same between every pair (eq. 4.7) */
@@ -54,7 +58,8 @@ typedef struct {
     int64_t gravity_q32;                         /* g * 2^32 / 10^6, for g * grade */
     int64_t inv_mass_q30;                        /* 10^6 * 2^30 / M: um/s^2 per N, * 2^30 */
     int32_t force_limit_q2;                      /* M * PFE_ACCEL_MAX_UM_S2, N * 2^2 */
-    int64_t formation_air_q32;                   /* c above, N per (mm/s)^2 * 2^32, < 2^22 */
+    uint32_t formation_air_q32;                  /* c above, N per (mm/s)^2 * 2^32,
+                                                  * <= PFE_FORMATION_AIR_MAX_Q32 */
     pfe_vehicle_t object;                        /* the platoon as one point mass */
     pfe_vehicle_t position[PFE_MAX_VEHICLES];    /* each truck at its position */
 } pfe_platoon_t;
@@ -75,9 +80,25 @@ void pfe_platoon_config_uniform(pfe_platoon_config_t *cfg, uint32_t n_vehicles, 
  */
 int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg);
 
-/* The object model's largest wheel force at a speed: min(Pmax_platoon / v,
- * traction) - c v^2 (formation drag above), rounded N, never below
- * -brake_max. The simulation (pfe_sim.c) computes the same inline. */
+/* The object model's largest wheel force at a speed v (0 .. PFE_SPEED_MAX_MM_S)
+ * with v2 = v * v at hand, for the platoon's object and formation drag c
+ * (formation_air_q32, at most PFE_FORMATION_AIR_MAX_Q32): min(Pmax_platoon /
+ * v, traction) - c v^2, rounded N, never below -brake_max. c <= 2^22 times
+ * v2 < 2^33 stays below 2^55; with the rounding half added, the high word
+ * is the product / 2^32. The result lies within [-Fb_max, traction_max],
+ * both within +-2^26 (32 trucks of PFE_FORCE_MAX_N at most). Inline: the
+ * simulation calls it in every step, with c held in its own state. */
+static inline int32_t pfe_platoon_force_max_v2_n(const pfe_vehicle_t *obj, uint32_t formation_q32,
+                                                 int32_t speed_mm_s, uint64_t v2)
+{
+    const uint64_t drag = (v2 * formation_q32) + 2147483648U;
+    const int32_t f = pfe_wheel_force_max_n(obj->power_max_w, obj->traction_max_n, speed_mm_s) -
+                      (int32_t)(uint32_t)(drag >> 32);
+    const int32_t lo = -(int32_t)obj->brake_max_n;
+    return (f < lo) ? lo : f;
+}
+
+/* The same for a speed alone, clamped to 0 .. PFE_SPEED_MAX_MM_S. */
 int32_t pfe_platoon_force_max_n(const pfe_platoon_t *pl, int32_t speed_mm_s);
 
 /* Small-angle gravity of the object model (eq. 4.8, 4.10): along = g * grade,

@@ -144,7 +144,9 @@ int pfe_predict_start(pfe_predict_t *p, const pfe_preview_t *pv, uint32_t previe
      * mass_q32): below 2^52; mass_min_q32 > 0 (a checked calibration). */
     const int64_t most = (int64_t)pfe_udiv_round_u64(
         (uint64_t)air_max * (uint64_t)platoon->object.mass_q32, (uint64_t)mass_min_q32);
-    p->formation_slow_q32 = (most > p->air_slow_q32) ? (most - p->air_slow_q32) : 0;
+    const int64_t c = (most > p->air_slow_q32) ? (most - p->air_slow_q32) : 0;
+    p->formation_slow_q32 = (uint32_t)((c < (int64_t)PFE_FORMATION_AIR_MAX_Q32) ? c
+                                                                               : (int64_t)PFE_FORMATION_AIR_MAX_Q32);
     p->fuel_upper_q20 = fq_max;
     p->fuel_lower_q20 = fq_min;
     const uint32_t followers = n - 1U;
@@ -178,7 +180,7 @@ static int start_run(pfe_predict_t *p)
     if (bound) {
         p->bound = *p->platoon;
         p->bound.object.air_q32 = upper ? p->air_fast_q32 : p->air_slow_q32;
-        p->bound.formation_air_q32 = upper ? 0 : p->formation_slow_q32;
+        p->bound.formation_air_q32 = upper ? 0U : p->formation_slow_q32;
         pl = &p->bound;
     }
     const uint32_t step = (p->road.spacing_mm < PFE_PREDICT_STEP_MAX_MM) ? p->road.spacing_mm

@@ -94,7 +94,7 @@ typedef struct {
     pfe_platoon_t bound;               /* the slow, then the fast platoon */
     int64_t air_slow_q32;              /* cw Af_max N: object air drag (pfe_vehicle_t.air_q32) */
     int64_t air_fast_q32;              /* cw Af_min sum (1 - phi_i(d / 2)) */
-    int64_t formation_slow_q32;        /* the slow platoon's formation drag (pfe_platoon.h):
+    uint32_t formation_slow_q32;       /* the slow platoon's formation drag (pfe_platoon.h):
                                         * cw Af_max (M / m_min - N); the fast one has none */
     int64_t fuel_upper_q20;            /* 1 / (eta_min rho_d), pfe_vehicle_t.fuel_q20 */
     int64_t fuel_lower_q20;            /* 1 / (eta_max rho_d) */

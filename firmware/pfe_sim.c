@@ -32,21 +32,6 @@ static int32_t resistance_q2(const pfe_sim_t *sim, int64_t v2, int32_t grade_ppm
                      pfe_rshift_round(sim->weight_q36 * (int64_t)grade_ppm, 34U));
 }
 
-/* pfe_platoon_force_max_n() with v^2 at hand: min(Pmax / v, traction) -
- * c v^2, at least -Fb_max. formation < 2^22 times v2 < 2^33: below 2^55;
- * the rounding half added, the high word is the product / 2^32. The result
- * lies within [-Fb_max, traction_max], both within +-PFE_PI_OUT_MAX
- * (32 trucks of PFE_FORCE_MAX_N at most: 3.2e7 < 2^26). */
-static PFE_ALWAYS_INLINE int32_t force_max_n(const pfe_sim_t *sim, int32_t speed_mm_s, uint64_t v2)
-{
-    const pfe_vehicle_t *obj = &sim->platoon->object;
-    const uint64_t drag = (v2 * sim->formation_air_q32) + ((uint64_t)1 << 31);
-    const int32_t f = pfe_wheel_force_max_n(obj->power_max_w, obj->traction_max_n, speed_mm_s) -
-                      (int32_t)(uint32_t)(drag >> 32);
-    const int32_t lo = -(int32_t)obj->brake_max_n;
-    return (f < lo) ? lo : f;
-}
-
 /* Per-kg gain [1/s * 1000] to N per um/s * 2^32: M * k * 2^32 / 10^9. */
 static int64_t gain_q32(uint32_t mass_kg, uint32_t milli)
 {
@@ -120,9 +105,7 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     sim->accel_um_s2 = 0;
     sim->fuel_step_nl = 0U;
     const pfe_vehicle_t *obj = &platoon->object;
-    sim->formation_air_q32 = (platoon->formation_air_q32 < ((int64_t)1 << 22))
-                                 ? (uint32_t)platoon->formation_air_q32
-                                 : ((uint32_t)1 << 22);
+    sim->formation_air_q32 = platoon->formation_air_q32;
     /* cr M g: roll_q32 < 2^31 times g < 2^24, over 2^30. */
     sim->roll_q2 = pfe_rshift_round(obj->roll_q32 * (int64_t)platoon->gravity_um_s2, 30U);
     /* M g [N] * 2^36 / 10^6 = mass_q32 [kg * 2^32 / 10^6] * g [um/s^2] * 2^4
@@ -154,7 +137,8 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     }
     const uint64_t v2_init = (uint64_t)initial_speed_mm_s * (uint32_t)initial_speed_mm_s;
     const int32_t hold = (resistance_q2(sim, (int64_t)v2_init, road->grade_ppm[0]) + 2) / 4;
-    const int32_t f_max = force_max_n(sim, initial_speed_mm_s, v2_init);
+    const int32_t f_max = pfe_platoon_force_max_v2_n(obj, sim->formation_air_q32, initial_speed_mm_s,
+                                                     v2_init);
     sim->wheel_force_n = pfe_clamp_i32(hold, -(int32_t)obj->brake_max_n, f_max);
     pfe_pi_init(&sim->pi, gain_q32(platoon->mass_kg, cruise->kp_milli_per_s),
                 gain_q32(platoon->mass_kg, cruise->ki_milli_per_s2), sim->wheel_force_n);
@@ -187,8 +171,8 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
     const uint64_t v2u = (uint64_t)v * v;
     const int64_t v2 = (int64_t)v2u;
     const int32_t resist_q2 = resistance_q2(sim, v2, grade);
-    /* Limits in order and within range (force_max_n()), dt <= 2^20 (above). */
-    const int32_t f_max = force_max_n(sim, v_mm_s, v2u);
+    /* Limits in order and within range (pfe_platoon_force_max_v2_n()), dt <= 2^20 (above). */
+    const int32_t f_max = pfe_platoon_force_max_v2_n(obj, sim->formation_air_q32, v_mm_s, v2u);
     const int32_t force = pfe_pi_step_in_range(&sim->pi, sim->set_speed_um_s - sim->speed_um_s,
                                                dt_q16, -(int32_t)obj->brake_max_n, f_max);
     /* |force| <= 2^26 (PFE_PI_OUT_MAX), |resistance| < 2^27 in N * 2^2: fits. */

@@ -72,7 +72,7 @@ typedef struct {
     int64_t aux_fuel_q8;     /* fuel for sum Paux, nL/s * 2^8 (eq. 4.14) */
     uint32_t ctrl_tau_ms;    /* the controller's time constant, min(1 / kp, 1 / sqrt(ki)) */
     uint32_t stiff_below_mm_s; /* below this speed a step may be shortened (see the top) */
-    uint32_t formation_air_q32; /* the platoon's formation drag (pfe_platoon.h), < 2^22 */
+    uint32_t formation_air_q32; /* the platoon's formation drag (pfe_platoon.h), held here */
     /* State after the last step. */
     int32_t speed_um_s;
     uint32_t position_mm;

@@ -68,6 +68,7 @@ int ref_platoon_init(ref_platoon_t *pl, const pfe_platoon_config_t *cfg)
     double eta_sum = 0.0;
     double p_per_kg = INFINITY;
     double t_per_kg = INFINITY;
+    double most = 0.0; /* formation drag: the largest k_i / m_i */
     for (unsigned i = 0U; i < n; i++) {
         const pfe_vehicle_calib_t *c = cfg->vehicle[i];
         if (pfe_calib_check_vehicle(c) != 0) {
@@ -85,10 +86,7 @@ int ref_platoon_init(ref_platoon_t *pl, const pfe_platoon_config_t *cfg)
         eta_sum += c->eta_ppm / 1e6;
         p_per_kg = fmin(p_per_kg, v->power_max / v->mass);
         t_per_kg = fmin(t_per_kg, v->traction_max / v->mass);
-    }
-    double most = 0.0; /* formation drag: the largest k_i / m_i */
-    for (unsigned i = 0U; i < n; i++) {
-        most = fmax(most, pl->position[i].air_k / pl->position[i].mass);
+        most = fmax(most, v->air_k / v->mass);
     }
     pl->formation_air_k = fmax(0.0, (most * o->mass) - o->air_k);
     o->power_max = p_per_kg * o->mass;               /* eq. 4.4 */

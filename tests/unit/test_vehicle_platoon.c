@@ -134,7 +134,7 @@ static void test_platoon_aggregates(void **state)
     assert_in_range(pfe_platoon_force_max_n(&pl, PFE_SPEED_MAX_MM_S), 17857 - 19721 - 1,
                     17857 - 19721 + 1);
     pfe_platoon_t steep = pl;
-    steep.formation_air_q32 = (int64_t)1 << 22; /* the documented largest c */
+    steep.formation_air_q32 = PFE_FORMATION_AIR_MAX_Q32; /* the documented largest c */
     assert_int_equal(pfe_platoon_force_max_n(&steep, PFE_SPEED_MAX_MM_S), -300000);
     /* eq. 4.3: 2000 N on 200 t is 0.01 m/s^2. */
     assert_int_equal(pfe_platoon_accel_um_s2(&pl, 2000 * 4), 10000);
