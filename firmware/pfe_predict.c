@@ -70,10 +70,10 @@ static void abandon(pfe_predict_t *p, int why)
     p->result.valid = false;
 }
 
-/* cw Af 1/2 rho of position i without its drag reduction: air_q32 /
- * (1 - phi_i). A reduction of 100 % (not in any real table) keeps air_q32. */
 static void loading_begin(pfe_predict_t *p);
 
+/* cw Af 1/2 rho of position i without its drag reduction: air_q32 /
+ * (1 - phi_i). A reduction of 100 % (not in any real table) keeps air_q32. */
 static int64_t air_unreduced_q32(const pfe_vehicle_t *v)
 {
     const uint32_t keep_bp = (v->reduction_bp < 10000U) ? (10000U - v->reduction_bp) : 10000U;
