@@ -192,8 +192,8 @@ static void test_range_only_inputs(void **state)
     assert_int_equal(pfe_input_take(&g_in, 0x27U, OK_, 100001, T0 + 3U), PFE_INPUT_REJECTED);
     pfe_input_init(&g_in, PFE_IN_ENGINE_FUEL, PFE_INPUT_NO_SOURCE);
     assert_int_equal(pfe_input_take(&g_in, ENGINE, OK_, 0, T0), PFE_INPUT_ACCEPTED);
-    assert_int_equal(pfe_input_take(&g_in, ENGINE, OK_, 69444, T0 + P), PFE_INPUT_ACCEPTED);
-    assert_int_equal(pfe_input_take(&g_in, ENGINE, OK_, 69445, T0 + (2U * P)), PFE_INPUT_REJECTED);
+    assert_int_equal(pfe_input_take(&g_in, ENGINE, OK_, 69444444, T0 + P), PFE_INPUT_ACCEPTED); /* 250 L/h */
+    assert_int_equal(pfe_input_take(&g_in, ENGINE, OK_, 69444445, T0 + (2U * P)), PFE_INPUT_REJECTED);
 }
 
 /* The sender count holds at PFE_INPUT_MAX_SENDERS. */
