@@ -4,7 +4,7 @@
 #include <stddef.h>
 
 #include "pfe_fixed.h"
-#include "pfe_vehicle.h"
+#include "pfe_vehicle.h" /* pfe_vehicle_init: the drag coefficient as the estimator holds it */
 
 #define Q24_ONE 16777216ULL          /* 2^24 */
 #define Q32_ONE 4294967296ULL        /* 2^32 */
@@ -24,6 +24,51 @@ static int64_t sdiv_round(int64_t num, uint32_t den)
         return -(int64_t)pfe_udiv_round_u64((uint64_t)(-num), den);
     }
     return (int64_t)pfe_udiv_round_u64((uint64_t)num, den);
+}
+
+/* num / den rounded, den >= 1, with both shifted right until den < 2^16
+ * so that the division takes pfe_udiv_u64's 32-bit path: relative error
+ * below 2^-15 for a den that started at 2^15 or more, exact below. The
+ * shift is found on 32 bits (a binary search of five steps) and applied
+ * once. Used for the mass, where den < 2^45. */
+static uint64_t udiv_norm(uint64_t num, uint64_t den)
+{
+    uint64_t n = num;
+    uint64_t d = den;
+    if (d > 0xFFFFFFFFULL) {
+        d >>= 16U;
+        n >>= 16U;
+    }
+    uint32_t d32 = (uint32_t)(d > 0xFFFFFFFFULL ? 0xFFFFFFFFULL : d);
+    uint32_t sh = 0U;
+    if (d32 >= 0x1000000U) {
+        d32 >>= 8U;
+        sh += 8U;
+    }
+    if (d32 >= 0x100000U) {
+        d32 >>= 4U;
+        sh += 4U;
+    }
+    if (d32 >= 0x40000U) {
+        d32 >>= 2U;
+        sh += 2U;
+    }
+    if (d32 >= 0x20000U) {
+        d32 >>= 1U;
+        sh += 1U;
+    }
+    if (d32 >= 0x10000U) {
+        d32 >>= 1U;
+        sh += 1U;
+    }
+    return pfe_udiv_round_u64(n >> sh, d32);
+}
+
+/* x / 1000 rounded, by round(2^32 / 1000) and a shift: relative error
+ * below 8e-8, for |x| < 2^40 (product below 2^63). */
+static int64_t div1000(int64_t x)
+{
+    return pfe_rshift_round(x * UW_PER_NW_Q32, 32U);
 }
 
 static uint32_t sat_inc(uint32_t n)
@@ -65,12 +110,13 @@ int pfe_identify_init(pfe_identify_t *id, const pfe_vehicle_calib_t *seed,
     /* eta rho_d in mW per nL/s: eta_ppm * rho_d [J/mL] / 10^9; times 2^24.
      * eta_ppm * rho_d <= 10^6 * 60000 < 2^36: the shifted product < 2^60,
      * the result < 60 * 2^24 < 2^30. */
-    id->fuel_power_q24 = (int64_t)pfe_udiv_round_u64(
+    id->fuel_power_q24 = (uint32_t)pfe_udiv_round_u64(
         ((uint64_t)seed->eta_ppm * (uint64_t)env->fuel_energy_j_ml) * Q24_ONE, 1000000000ULL);
-    id->air_full_q32 = veh.air_q32;
-    id->air_q32 = veh.air_q32;
+    /* < 2^17 for a calibration that passed its check (pfe_vehicle.h). */
+    id->air_full_q32 = (uint32_t)veh.air_q32;
+    id->air_q32 = id->air_full_q32;
     /* cr [ppm] * 2^32 / 10^6, cr <= 0.1: < 2^29. */
-    id->roll_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)seed->roll_coef_ppm * Q32_ONE, 1000000ULL);
+    id->roll_q32 = (uint32_t)pfe_udiv_round_u64((uint64_t)seed->roll_coef_ppm * Q32_ONE, 1000000ULL);
     id->gravity_um_s2 = env->gravity_um_s2;
     id->rot_mass_kg = seed->rot_mass_kg;
     id->mass_kg = seed->mass_kg;
@@ -86,7 +132,7 @@ int pfe_identify_set_drag_reduction(pfe_identify_t *id, uint32_t reduction_bp)
         return PFE_EINVAL;
     }
     /* air_full_q32 < 2^17 times (10000 - phi) <= 10^4: < 2^31. */
-    id->air_q32 = (int64_t)pfe_udiv_round_u64(
+    id->air_q32 = (uint32_t)pfe_udiv_round_u64(
         (uint64_t)id->air_full_q32 * (uint64_t)(10000U - reduction_bp), 10000U);
     id->have_prev = false;
     id->win_n = 0U;
@@ -136,7 +182,7 @@ static void update_mass(pfe_identify_t *id, int64_t dx, int64_t dy)
         return;
     }
     /* |dx| < 2^18, |dy| < 2^22, m <= 10^5: |m dx| / 1000 < 2^25, |e| < 2^26. */
-    const int64_t e = dy - sdiv_round((int64_t)id->mass_kg * dx, 1000U);
+    const int64_t e = dy - div1000((int64_t)id->mass_kg * dx);
     const int64_t e2 = pfe_clamp_i64(e * e, 0, VAR_MAX_W2);
     if (id->n_mass == 0U) {
         id->var_w2 = e2;
@@ -156,7 +202,7 @@ static void update_mass(pfe_identify_t *id, int64_t dx, int64_t dy)
     const int64_t num = (1000 * id->sxy) + (PFE_ID_PRIOR_INFO * id->mass0_kg);
     const int64_t den = id->sxx + PFE_ID_PRIOR_INFO;
     id->mass_kg = (num <= 0) ? PFE_MASS_MIN_KG
-                             : clamp_mass((int64_t)pfe_udiv_round_u64((uint64_t)num, (uint64_t)den));
+                             : clamp_mass((int64_t)udiv_norm((uint64_t)num, (uint64_t)den));
     id->n_mass = sat_inc(id->n_mass);
     id->counters.mass_updates = sat_inc(id->counters.mass_updates);
     if (id->n_mass >= PFE_ID_CONVERGED_UPDATES) {
@@ -167,7 +213,7 @@ static void update_mass(pfe_identify_t *id, int64_t dx, int64_t dy)
 /* Paux = mean(y) - m mean(x): m mean_x_q4 <= 10^5 * 1.6 * 10^6 < 2^38. */
 static void update_aux(pfe_identify_t *id)
 {
-    const int64_t p_q4 = id->mean_y_q4 - sdiv_round((int64_t)id->mass_kg * id->mean_x_q4, 1000U);
+    const int64_t p_q4 = id->mean_y_q4 - div1000((int64_t)id->mass_kg * id->mean_x_q4);
     const int64_t p = pfe_rshift_round(p_q4, 4U);
     id->aux_w = (uint32_t)pfe_clamp_i64(p, 0, (int64_t)PFE_ID_AUX_MAX_W);
 }
@@ -180,10 +226,10 @@ static void close_window(pfe_identify_t *id, int32_t v_mm_s)
     /* v^2 - v0^2 in (mm/s)^2 = 2 uJ/kg, |.| < 2^31; in nJ/kg * 2 it is 1000 times that. */
     const int64_t ke2 = ((int64_t)v_mm_s * v_mm_s) - ((int64_t)id->win_v0_mm_s * id->win_v0_mm_s);
     /* x: (nJ/kg * 2) / (ms * 2) = uW/kg, then mW/kg. |1000 ke2| < 2^41. */
-    const int64_t x = sdiv_round(sdiv_round((1000 * ke2) + id->win_spec2_nj_kg, t2), 1000U);
+    const int64_t x = div1000(sdiv_round((1000 * ke2) + id->win_spec2_nj_kg, t2));
     /* y: (uJ * 2) / (ms * 2) = mW, then W. mj ke2 <= 10^5 * 2^31 < 2^48. */
     const int64_t y2 = (id->win_fuel2_uj - id->win_air2_uj) - ((int64_t)id->rot_mass_kg * ke2);
-    const int64_t y = sdiv_round(sdiv_round(y2, t2), 1000U);
+    const int64_t y = div1000(sdiv_round(y2, t2));
     if ((x > PFE_ID_X_MAX_MW_KG) || (x < -PFE_ID_X_MAX_MW_KG) ||
         (y > (int64_t)PFE_POWER_MAX_W) || (y < -(int64_t)PFE_POWER_MAX_W)) {
         id->counters.windows_rejected = sat_inc(id->counters.windows_rejected);
@@ -245,6 +291,28 @@ static void track_stop(pfe_identify_t *id, const pfe_identify_sample_t *s, uint3
     }
 }
 
+/* g (cr cos(alpha) + sin(alpha)) in um/s^2 for |grade| <= PFE_ID_GRADE_MAX_PPM
+ * (eq. 3.5, 3.6): cos = 1 / sqrt(1 + t^2) ~ 1 - t^2/2 + 3 t^4/8, error below
+ * 5 t^6 / 16 = 8e-8 at 8 %, and sin = t cos; in Q30. Cheaper than
+ * pfe_grade_accel's Newton steps, which the whole grade range needs. */
+static int64_t specific_force_um_s2(const pfe_identify_t *id, int32_t grade_ppm)
+{
+    /* grade * 2^30 / 10^6 = grade * round(2^50 / 10^6) / 2^20; |grade| <=
+     * 8e4: below 2^27. t^2 < 2^23, t^4 term < 2^15. */
+    const int64_t t_q30 = pfe_rshift_round((int64_t)grade_ppm * 1125899907LL, 20U);
+    const int64_t x = pfe_rshift_round(t_q30 * t_q30, 30U);
+    const int64_t cos_q30 = (1073741824LL - (x / 2)) + pfe_rshift_round(3 * x * x, 33U);
+    const int64_t sin_q30 = pfe_rshift_round(t_q30 * cos_q30, 30U);
+    /* g < 2^24 times cos, |sin| <= 2^30: < 2^54; cr_q32 < 2^29 times
+     * g cos < 2^24: < 2^53. */
+    const int32_t cos32 = (int32_t)cos_q30;
+    const int32_t sin32 = (int32_t)sin_q30;
+    const int64_t g = (int64_t)id->gravity_um_s2;
+    const int32_t normal = (int32_t)pfe_rshift_round(g * cos32, 30U);
+    const int64_t along = pfe_rshift_round(g * sin32, 30U);
+    return along + pfe_rshift_round((int64_t)id->roll_q32 * normal, 32U);
+}
+
 /* |v - v_prev| / dt beyond PFE_ID_ACCEL_MAX_UM_S2: |dv| [mm/s] * 1000 against
  * a_max [mm/s^2] * dt [ms]; both below 2^27. */
 static bool speed_jump(int32_t v_prev, int32_t v, uint32_t dt_ms)
@@ -281,7 +349,7 @@ pfe_id_result_t pfe_identify_step(pfe_identify_t *id, const pfe_identify_sample_
     /* eta rho_d fc in mW: fc clamped to 2^30 (LFE1 ends at 8.9 * 10^8 nL/s)
      * times fuel_power_q24 < 2^30: < 2^60. */
     const uint32_t fc = (s->fuel_rate_nl_s < (1UL << 30U)) ? s->fuel_rate_nl_s : (1UL << 30U);
-    const int64_t fuel_mw = pfe_rshift_round((int64_t)fc * id->fuel_power_q24, 24U);
+    const int64_t fuel_mw = pfe_rshift_round((int64_t)((uint64_t)fc * id->fuel_power_q24), 24U);
     const pfe_id_result_t g = gate(s, fuel_mw);
     if (g != PFE_ID_USED) {
         id->have_prev = false;
@@ -291,14 +359,12 @@ pfe_id_result_t pfe_identify_step(pfe_identify_t *id, const pfe_identify_sample_
     const int32_t v = s->speed_mm_s; /* in [8000, 36000] from here */
     /* k v^3 in mW: air_q32 < 2^17 times v^2 < 2^31 is < 2^48, / 2^16 < 2^32;
      * times v < 2^16: < 2^48, / 2^16: < 2^32. */
-    const int64_t f_q16 = pfe_rshift_round(id->air_q32 * ((int64_t)v * v), 16U);
+    const uint32_t v2 = (uint32_t)v * (uint32_t)v;
+    const int64_t f_q16 = pfe_rshift_round((int64_t)((uint64_t)id->air_q32 * v2), 16U);
     const int64_t air_mw = pfe_mul_q(f_q16, v, 16U);
     /* v g (cr cos + sin) in uW/kg: |g sin| < 8 * 10^5, cr g cos < 10^6 um/s^2;
      * times v: < 2^36; times round(2^32 / 1000) < 2^23: < 2^59. */
-    pfe_grade_accel_t ga;
-    pfe_grade_accel(s->grade_ppm, id->gravity_um_s2, &ga);
-    const int64_t resist_um_s2 = (int64_t)ga.along_um_s2 +
-                                 pfe_rshift_round(id->roll_q32 * ga.normal_um_s2, 32U);
+    const int64_t resist_um_s2 = specific_force_um_s2(id, s->grade_ppm);
     const int64_t spec_uw = pfe_rshift_round(((int64_t)v * resist_um_s2) * UW_PER_NW_Q32, 32U);
 
     pfe_id_result_t result = PFE_ID_USED;
