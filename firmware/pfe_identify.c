@@ -12,9 +12,9 @@
 #define VAR_MAX_W2 17592186044416LL  /* 2^44 */
 #define SXX_MAX 17592186044416LL     /* 2^44 > (2 * 10^5)^2 * 2^8: the bound of Sxx */
 #define SXY_MAX 281474976710656LL    /* 2^48 > 2 * 10^5 * 4 * 10^6 * 2^8: the bound of |Sxy| */
-/* (PFE_ID_CONVERGED_INV_REL^2 * 10^6) / 2^16, rounded up: the convergence
- * test with both sides divided by 2^16 (see converged_now). */
-#define CONV_LHS_SCALE 6104LL
+/* (PFE_ID_CONVERGED_INV_REL^2 * 10^6) / 2^16, rounded up (6104): the
+ * convergence test with both sides divided by 2^16 (see converged_now). */
+#define CONV_LHS_SCALE ((((uint64_t)PFE_ID_CONVERGED_INV_REL * PFE_ID_CONVERGED_INV_REL * 1000000ULL) + 65535ULL) >> 16U)
 
 /* num / den rounded to nearest, halves away from zero; den in
  * [1, PFE_UDIV_SMALL_MAX] takes pfe_udiv_u64's cheap path. */
@@ -39,7 +39,7 @@ static uint64_t udiv_norm(uint64_t num, uint64_t den)
         d >>= 16U;
         n >>= 16U;
     }
-    uint32_t d32 = (uint32_t)(d > 0xFFFFFFFFULL ? 0xFFFFFFFFULL : d);
+    uint32_t d32 = (uint32_t)d; /* den < 2^45: d < 2^29 here */
     uint32_t sh = 0U;
     if (d32 >= 0x1000000U) {
         d32 >>= 8U;
@@ -132,8 +132,8 @@ int pfe_identify_set_drag_reduction(pfe_identify_t *id, uint32_t reduction_bp)
         return PFE_EINVAL;
     }
     /* air_full_q32 < 2^17 times (10000 - phi) <= 10^4: < 2^31. */
-    id->air_q32 = (uint32_t)pfe_udiv_round_u64(
-        (uint64_t)id->air_full_q32 * (uint64_t)(10000U - reduction_bp), 10000U);
+    const uint32_t keep_bp = 10000U - reduction_bp;
+    id->air_q32 = (uint32_t)pfe_udiv_round_u64((uint64_t)id->air_full_q32 * keep_bp, 10000U);
     id->have_prev = false;
     id->win_n = 0U;
     return PFE_OK;
@@ -167,8 +167,9 @@ static pfe_id_result_t gate(const pfe_identify_sample_t *s, int64_t fuel_mw)
  * times (Sxx + I0) / 2^16 < 2^29: < 2^63. */
 static bool converged_now(const pfe_identify_t *id)
 {
-    const uint64_t lhs = (uint64_t)id->var_w2 * (uint64_t)CONV_LHS_SCALE;
-    const uint64_t info = (uint64_t)(id->sxx + PFE_ID_PRIOR_INFO) >> 16U;
+    const uint64_t lhs = (uint64_t)id->var_w2 * CONV_LHS_SCALE;
+    const int64_t den = id->sxx + PFE_ID_PRIOR_INFO;
+    const uint64_t info = (uint64_t)den >> 16U;
     const uint64_t m = (uint64_t)id->mass_kg;
     return lhs <= ((m * m) * info);
 }
@@ -349,7 +350,8 @@ pfe_id_result_t pfe_identify_step(pfe_identify_t *id, const pfe_identify_sample_
     /* eta rho_d fc in mW: fc clamped to 2^30 (LFE1 ends at 8.9 * 10^8 nL/s)
      * times fuel_power_q24 < 2^30: < 2^60. */
     const uint32_t fc = (s->fuel_rate_nl_s < (1UL << 30U)) ? s->fuel_rate_nl_s : (1UL << 30U);
-    const int64_t fuel_mw = pfe_rshift_round((int64_t)((uint64_t)fc * id->fuel_power_q24), 24U);
+    const uint64_t fuel_q24 = (uint64_t)fc * id->fuel_power_q24;
+    const int64_t fuel_mw = pfe_rshift_round((int64_t)fuel_q24, 24U);
     const pfe_id_result_t g = gate(s, fuel_mw);
     if (g != PFE_ID_USED) {
         id->have_prev = false;
@@ -360,7 +362,8 @@ pfe_id_result_t pfe_identify_step(pfe_identify_t *id, const pfe_identify_sample_
     /* k v^3 in mW: air_q32 < 2^17 times v^2 < 2^31 is < 2^48, / 2^16 < 2^32;
      * times v < 2^16: < 2^48, / 2^16: < 2^32. */
     const uint32_t v2 = (uint32_t)v * (uint32_t)v;
-    const int64_t f_q16 = pfe_rshift_round((int64_t)((uint64_t)id->air_q32 * v2), 16U);
+    const uint64_t f_q32 = (uint64_t)id->air_q32 * v2;
+    const int64_t f_q16 = pfe_rshift_round((int64_t)f_q32, 16U);
     const int64_t air_mw = pfe_mul_q(f_q16, v, 16U);
     /* v g (cr cos + sin) in uW/kg: |g sin| < 8 * 10^5, cr g cos < 10^6 um/s^2;
      * times v: < 2^36; times round(2^32 / 1000) < 2^23: < 2^59. */
