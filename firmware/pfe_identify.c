@@ -174,25 +174,20 @@ static bool converged_now(const pfe_identify_t *id)
     return lhs <= ((m * m) * info);
 }
 
-/* One mass update from a window's dx [mW/kg] and dy [W] (header, 3.). */
-static void update_mass(pfe_identify_t *id, int64_t dx, int64_t dy)
+/* Residual e = dy - m dx of a window (W), squared and clipped to 2^44:
+ * |dx| < 2^18, |dy| < 2^22, m <= 10^5: |m dx| / 1000 < 2^25, |e| < 2^26. */
+static int64_t residual2(const pfe_identify_t *id, int64_t dx, int64_t dy)
 {
-    if ((id->sxx < 0) || (id->sxx > SXX_MAX) ||
-        (id->sxy > SXY_MAX) || (id->sxy < -SXY_MAX) || (id->var_w2 < 0)) {
-        reset_information(id); /* corrupted: the bounds below cannot be left */
-        return;
-    }
-    /* |dx| < 2^18, |dy| < 2^22, m <= 10^5: |m dx| / 1000 < 2^25, |e| < 2^26. */
     const int64_t e = dy - div1000((int64_t)id->mass_kg * dx);
-    const int64_t e2 = pfe_clamp_i64(e * e, 0, VAR_MAX_W2);
+    return pfe_clamp_i64(e * e, 0, VAR_MAX_W2);
+}
+
+/* One mass update from a window's dx [mW/kg], dy [W] and squared residual
+ * (header, 3.). */
+static void update_mass(pfe_identify_t *id, int64_t dx, int64_t dy, int64_t e2)
+{
     if (id->n_mass == 0U) {
         id->var_w2 = e2;
-    } else if ((id->n_mass >= PFE_ID_OUTLIER_AFTER) && (e2 > (16 * id->var_w2))) {
-        /* An outlier: counted, and sigma^2 still learns of it (clipped), so
-         * that residuals that stay large are accepted again. */
-        id->var_w2 += pfe_rshift_round((16 * id->var_w2) - id->var_w2, 4U);
-        id->counters.windows_rejected = sat_inc(id->counters.windows_rejected);
-        return;
     } else {
         id->var_w2 += pfe_rshift_round(e2 - id->var_w2, 4U);
     }
@@ -236,8 +231,6 @@ static void close_window(pfe_identify_t *id, int32_t v_mm_s)
         id->counters.windows_rejected = sat_inc(id->counters.windows_rejected);
         return;
     }
-    id->counters.windows_used = sat_inc(id->counters.windows_used);
-    id->since_window_ms = 0U;
     if (!id->have_mean) {
         id->mean_x_q4 = 16 * x;
         id->mean_y_q4 = 16 * y;
@@ -246,12 +239,31 @@ static void close_window(pfe_identify_t *id, int32_t v_mm_s)
         /* |dx| <= 2 * 10^5 < 2^18, |dy| <= 4 * 10^6 < 2^22. */
         const int64_t dx = x - pfe_rshift_round(id->mean_x_q4, 4U);
         const int64_t dy = y - pfe_rshift_round(id->mean_y_q4, 4U);
+        if ((id->sxx < 0) || (id->sxx > SXX_MAX) || (id->sxy > SXY_MAX) ||
+            (id->sxy < -SXY_MAX) || (id->var_w2 < 0) || (id->var_w2 > VAR_MAX_W2)) {
+            reset_information(id); /* corrupted: the bounds kept below cannot be left */
+            return;
+        }
+        const int64_t e2 = residual2(id, dx, dy);
+        const int64_t floor_w2 = (int64_t)PFE_ID_RESIDUAL_FLOOR_W * PFE_ID_RESIDUAL_FLOOR_W;
+        const int64_t var_w2 = (id->var_w2 > floor_w2) ? id->var_w2 : floor_w2;
+        if ((id->n_mass >= PFE_ID_OUTLIER_AFTER) && (e2 > (16 * var_w2))) {
+            /* An outlier: neither in the means nor in the mass; sigma^2
+             * still learns of it (clipped to 16 sigma^2, at most 2^44), so
+             * that residuals that stay large are accepted again. */
+            const int64_t grown = id->var_w2 + pfe_rshift_round(15 * id->var_w2, 4U);
+            id->var_w2 = (grown < VAR_MAX_W2) ? grown : VAR_MAX_W2;
+            id->counters.windows_rejected = sat_inc(id->counters.windows_rejected);
+            return;
+        }
         id->mean_x_q4 += x - pfe_rshift_round(id->mean_x_q4, PFE_ID_MEAN_SHIFT);
         id->mean_y_q4 += y - pfe_rshift_round(id->mean_y_q4, PFE_ID_MEAN_SHIFT);
         if ((dx >= PFE_ID_EXCITE_MW_KG) || (dx <= -PFE_ID_EXCITE_MW_KG)) {
-            update_mass(id, dx, dy);
+            update_mass(id, dx, dy, e2);
         }
     }
+    id->counters.windows_used = sat_inc(id->counters.windows_used);
+    id->since_window_ms = 0U;
     update_aux(id);
 }
 

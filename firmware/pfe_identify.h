@@ -48,10 +48,14 @@
  *    gates below (scaling), so they cannot overflow; a sum found outside
  *    its bound (corrupted state) resets the information to the prior.
  *    Only windows with |dx| >= PFE_ID_EXCITE_MW_KG update the mass (enough
- *    excitation, from acceleration or grade changes); a window whose
- *    residual e = dy - m dx exceeds 4 sigma (after 8 updates) is an outlier
- *    and skipped. sigma^2 is the exponential mean of e^2 (weight 1/16,
- *    each e^2 clipped to 16 sigma^2).
+ *    excitation, from acceleration or grade changes). Once the mass has
+ *    PFE_ID_OUTLIER_AFTER updates, a window whose residual e = dy - m dx
+ *    exceeds 4 max(sigma, PFE_ID_RESIDUAL_FLOOR_W) is an outlier (a load
+ *    the model does not know, a gear change inside the window) and goes
+ *    neither into the means nor into the mass. sigma^2 is the exponential
+ *    mean of the mass updates' e^2 (weight 1/16); an outlier still raises
+ *    it as a residual of 4 sigma would, so that residuals that stay large
+ *    (the truck changed) are accepted again.
  *
  * 4. Aux power from the means: Paux = mean(y) - m mean(x), bounded to
  *    [0, PFE_ID_AUX_MAX_W]. Before the mass has converged this also absorbs
@@ -67,7 +71,8 @@
  * speed change no more than PFE_ID_ACCEL_MAX_UM_S2 per second (else a new
  * window starts at this sample, or at the next one for an implausible speed
  * change). Each window: |x| <= PFE_ID_X_MAX_MW_KG and |y| <= PFE_POWER_MAX_W.
- * Mass updates: |dx| >= PFE_ID_EXCITE_MW_KG, and not an outlier. A constant
+ * Every window once the mass has 8 updates: not an outlier. Mass updates:
+ * |dx| >= PFE_ID_EXCITE_MW_KG. A constant
  * speed on a constant grade gives dx of noise only: no mass update.
  *
  * Convergence: at least PFE_ID_CONVERGED_UPDATES mass updates since the
@@ -118,6 +123,7 @@
 #define PFE_ID_EXCITE_MW_KG 1000         /* |dx| for a mass update: 1 W/kg */
 #define PFE_ID_PRIOR_INFO 4000000LL      /* I0, (mW/kg)^2: four updates at 1 W/kg */
 #define PFE_ID_OUTLIER_AFTER 8U          /* mass updates before outliers are rejected */
+#define PFE_ID_RESIDUAL_FLOOR_W 1000     /* sigma's floor in the outlier test */
 #define PFE_ID_CONVERGED_UPDATES 30U
 #define PFE_ID_CONVERGED_INV_REL 20U     /* standard error <= mass / 20 */
 #define PFE_ID_STOP_MM_S 500             /* standstill */

@@ -36,17 +36,12 @@ static void reset_information(identify_ref_t *r)
     r->win_n = 0U;
 }
 
-static void update_mass(identify_ref_t *r, double dx, double dy)
+static void update_mass(identify_ref_t *r, double dx, double dy, double e2)
 {
     /* dx in W/kg, dy in W; the prior I0 is PFE_ID_PRIOR_INFO (mW/kg)^2. */
     const double i0 = (double)PFE_ID_PRIOR_INFO / 1e6;
-    const double e = dy - (r->mass * dx);
-    const double e2 = e * e;
     if (r->n_mass == 0U) {
         r->var = e2;
-    } else if ((r->n_mass >= PFE_ID_OUTLIER_AFTER) && (e2 > 16.0 * r->var)) {
-        r->var += (16.0 * r->var - r->var) / 16.0;
-        return;
     } else {
         r->var += (e2 - r->var) / 16.0;
     }
@@ -70,8 +65,6 @@ static void close_window(identify_ref_t *r, double v)
     if ((fabs(x) > PFE_ID_X_MAX_MW_KG / 1000.0) || (fabs(y) > PFE_POWER_MAX_W)) {
         return;
     }
-    r->windows_used++;
-    r->since_window = 0.0;
     if (!r->have_mean) {
         r->mean_x = x;
         r->mean_y = y;
@@ -79,13 +72,22 @@ static void close_window(identify_ref_t *r, double v)
     } else {
         const double dx = x - r->mean_x;
         const double dy = y - r->mean_y;
+        const double e = dy - (r->mass * dx);
+        const double e2 = e * e;
+        const double floor_w2 = (double)PFE_ID_RESIDUAL_FLOOR_W * PFE_ID_RESIDUAL_FLOOR_W;
+        if ((r->n_mass >= PFE_ID_OUTLIER_AFTER) && (e2 > 16.0 * fmax(r->var, floor_w2))) {
+            r->var = fmin(r->var + (15.0 * r->var) / 16.0, 17592186044416.0);
+            return;
+        }
         const double a = 1.0 / (double)(1U << PFE_ID_MEAN_SHIFT);
         r->mean_x += a * dx;
         r->mean_y += a * dy;
         if (fabs(dx) >= PFE_ID_EXCITE_MW_KG / 1000.0) {
-            update_mass(r, dx, dy);
+            update_mass(r, dx, dy, e2);
         }
     }
+    r->windows_used++;
+    r->since_window = 0.0;
     r->aux = clampd(r->mean_y - r->mass * r->mean_x, 0.0, PFE_ID_AUX_MAX_W);
 }
 

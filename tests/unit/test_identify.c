@@ -597,6 +597,128 @@ static void test_drag_reduction(void **state)
     assert_signed_range(e, -1500, 1500);
 }
 
+/* Samples of the integer-free truth without noise: constant speed v, the
+ * grade switching between +6 % and the flat every 40 s (the fuel always on),
+ * for a truck of mass_kg. */
+static void steep_grades(pfe_identify_t *id, double mass_kg, uint32_t samples, double fuel_scale_at)
+{
+    drive_t d;
+    drive_init(&d, mass_kg, 1e7, 0.0, 3U);
+    for (uint32_t k = 0U; k < samples; k++) {
+        const double grade = (((k / 400U) % 2U) == 0U) ? 0.06 : 0.0;
+        const double v = 20.0;
+        const double f = force(&d, d.m, 0.0, v, grade);
+        const double scale = ((fuel_scale_at >= 0.0) && ((double)k >= fuel_scale_at) &&
+                             ((double)k < (fuel_scale_at + 10.0))) ? 3.0 : 1.0;
+        const pfe_identify_sample_t smp = {100000ULL * k, 20000, (int32_t)round_d(grade * 1e6),
+                                           (uint32_t)round_d(fuel_rate(&d, f, v, d.aux) * 1e9 * scale),
+                                           true, true, true, false};
+        (void)pfe_identify_step(id, &smp);
+    }
+}
+
+/* Grade steps of 6 %: large information (Sxx beyond 2^32, the divisor's
+ * normalisation), a noise-free truck of 25 t found within 0.5 %. */
+static void test_steep_grades_exact(void **state)
+{
+    (void)state;
+    pfe_identify_t *id = fresh();
+    steep_grades(id, 25000.0, 12000U, -1.0);
+    assert_true(id->sxx > (int64_t)UINT32_MAX); /* internals: the path exercised */
+    const int64_t e = err_bp(pfe_identify_mass_kg(id), 25000.0);
+    print_message("steep grades, no noise: %u kg for 25 t (%+.2f %%), aux %u W\n",
+                  (unsigned)pfe_identify_mass_kg(id), (double)e / 100.0,
+                  (unsigned)pfe_identify_aux_power_w(id));
+    assert_signed_range(e, -50, 50);
+    assert_signed_range((int64_t)pfe_identify_aux_power_w(id), 3500, 4500);
+    assert_true(pfe_identify_converged(id));
+}
+
+/* A window with three times the fuel over half of it (a second engine
+ * load the model does not know), once the residuals are known: an outlier,
+ * counted, the mass not moved by it. */
+static void test_outlier_window_is_skipped(void **state)
+{
+    (void)state;
+    pfe_identify_t *id = fresh();
+    steep_grades(id, 25000.0, 6000U, -1.0);
+    const uint32_t m = pfe_identify_mass_kg(id);
+    const uint32_t rejected = pfe_identify_counters(id)->windows_rejected;
+    assert_true(pfe_identify_counters(id)->mass_updates >= PFE_ID_OUTLIER_AFTER);
+    /* The same drive again from its start: the spike falls at the first
+     * grade step's window, where dx is large. */
+    pfe_identify_t again = *id;
+    steep_grades(&again, 25000.0, 2400U, -1.0);
+    pfe_identify_t spiked = *id;
+    steep_grades(&spiked, 25000.0, 2400U, 405.0);
+    assert_int_equal(pfe_identify_counters(&spiked)->windows_rejected,
+                     pfe_identify_counters(&again)->windows_rejected + 1U);
+    assert_signed_range((int64_t)pfe_identify_mass_kg(&spiked) - (int64_t)m, -100, 100);
+    assert_true(pfe_identify_counters(id)->windows_rejected == rejected);
+}
+
+/* A state corrupted in memory (Sxx negative): the next mass update resets
+ * the information to the prior instead of dividing by it. Reaches
+ * internals. */
+static void test_corrupted_information_resets(void **state)
+{
+    (void)state;
+    pfe_identify_t *id = fresh();
+    steep_grades(id, 25000.0, 2400U, -1.0);
+    assert_true(id->n_mass > 0U);
+    const uint32_t m = pfe_identify_mass_kg(id);
+    id->sxx = -1;
+    steep_grades(id, 25000.0, 405U, -1.0); /* up to the next grade step's window */
+    assert_int_equal(id->sxx, 0);
+    assert_int_equal(id->n_mass, 0);
+    assert_int_equal(pfe_identify_mass_kg(id), m);
+}
+
+/* A window beyond 100 W/kg (a rolling coefficient of 0.1, 8 % and 2 m/s^2
+ * at 33 m/s: about 130 W/kg) is refused, counted. */
+static void test_window_out_of_bounds(void **state)
+{
+    (void)state;
+    pfe_vehicle_calib_t seed = pfe_default_vehicle;
+    seed.roll_coef_ppm = 100000U;
+    memset(&g_id, 0xA5, sizeof g_id);
+    assert_int_equal(pfe_identify_init(&g_id, &seed, &pfe_default_env), PFE_OK);
+    for (uint32_t k = 0U; k <= PFE_ID_WINDOW_INTERVALS; k++) {
+        const pfe_identify_sample_t smp = {100000ULL * k, 32000 + (int32_t)(200U * k / 1U) / 1,
+                                           PFE_ID_GRADE_MAX_PPM, 100000000U, true, true, true, false};
+        assert_int_equal(pfe_identify_step(&g_id, &smp), PFE_ID_USED);
+    }
+    assert_int_equal(pfe_identify_counters(&g_id)->windows_rejected, 1);
+    assert_int_equal(pfe_identify_counters(&g_id)->windows_used, 0);
+}
+
+/* Counters and timers saturate instead of wrapping. Reaches internals
+ * (nobody drives 49 days in a test). */
+static void test_counters_saturate(void **state)
+{
+    (void)state;
+    pfe_identify_t *id = fresh();
+    id->counters.samples_used = UINT32_MAX;
+    id->counters.samples_rejected = UINT32_MAX;
+    id->since_window_ms = UINT32_MAX - 10U;
+    pfe_identify_sample_t s = {0U, 20000, 0, 6500000U, true, true, true, false};
+    (void)pfe_identify_step(id, &s);
+    s.now_us = 100000U;
+    (void)pfe_identify_step(id, &s);
+    s.fuel_valid = false;
+    s.now_us = 200000U;
+    (void)pfe_identify_step(id, &s);
+    assert_int_equal(id->counters.samples_used, UINT32_MAX);
+    assert_int_equal(id->counters.samples_rejected, UINT32_MAX);
+    assert_int_equal(id->since_window_ms, UINT32_MAX);
+    assert_false(id->have_mean);
+    id->stop_ms = UINT32_MAX - 10U;
+    s.speed_mm_s = 0;
+    s.now_us = 300000U;
+    (void)pfe_identify_step(id, &s);
+    assert_int_equal(id->stop_ms, UINT32_MAX);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -613,6 +735,11 @@ int main(void)
         cmocka_unit_test(test_restore),
         cmocka_unit_test(test_standstill_resets_convergence),
         cmocka_unit_test(test_drag_reduction),
+        cmocka_unit_test(test_steep_grades_exact),
+        cmocka_unit_test(test_outlier_window_is_skipped),
+        cmocka_unit_test(test_corrupted_information_resets),
+        cmocka_unit_test(test_window_out_of_bounds),
+        cmocka_unit_test(test_counters_saturate),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
