@@ -139,6 +139,72 @@ static void test_noise_free(void **state)
     }
 }
 
+/* The truth differs from the calibration in one parameter the module
+ * takes as known (docs/identification.md, "Limits"): the identified mass
+ * and aux power absorb it, the fuel stays within bounds. */
+static void calib_error(const char *what, unsigned mass_kg, unsigned eta_ppm, unsigned cr_ppm,
+                        unsigned area_mm2, unsigned aux_w)
+{
+    pfe_vehicle_calib_t truck = pfe_default_vehicle;
+    truck.mass_kg = mass_kg;
+    truck.power_max_w = 450000U;
+    truck.eta_ppm = eta_ppm;
+    truck.roll_coef_ppm = cr_ppm;
+    truck.drag_area_mm2 = area_mm2;
+    truck.power_aux_w = aux_w;
+    id_drive_t d;
+    id_drive_init(&d, &truck, &pfe_default_env, 0.05, 0.02, 0.02, 77U);
+    pfe_identify_t id;
+    assert_int_equal(pfe_identify_init(&id, &pfe_default_vehicle, &pfe_default_env), PFE_OK);
+    pfe_identify_sample_t s;
+    for (unsigned k = 0U; k < 6000U; k++) {
+        id_drive_advance(&d, &s);
+        (void)pfe_identify_step(&id, &s);
+    }
+    /* The prediction: the calibration's model with the identified mass and
+     * aux power; and the calibration alone. */
+    ref_vehicle_t cal;
+    ref_vehicle_init(&cal, &pfe_default_vehicle, &pfe_default_env, 0.0);
+    ref_vehicle_t ided = cal;
+    const double m = pfe_identify_mass_kg(&id);
+    ided.roll_mass = (cal.roll_mass / cal.mass) * m;
+    ided.mass_fuel = m + (cal.mass_fuel - cal.mass);
+    ided.mass = m;
+    double truth = 0.0;
+    double pred = 0.0;
+    double pred_cal = 0.0;
+    for (unsigned k = 0U; k < 3000U; k++) {
+        id_drive_advance(&d, &s);
+        truth += d.fuel_rate * 0.1;
+        const double g = id_drive_grade(d.position);
+        const double f = (ided.mass_fuel * d.accel) + ref_vehicle_resistance(&ided, d.speed, g, d.gravity);
+        pred += ref_fuel_rate(f, d.speed, pfe_identify_aux_power_w(&id), ided.fuel_per_j) * 0.1;
+        const double fc = (cal.mass_fuel * d.accel) + ref_vehicle_resistance(&cal, d.speed, g, d.gravity);
+        pred_cal += ref_fuel_rate(fc, d.speed, cal.power_aux, cal.fuel_per_j) * 0.1;
+    }
+    const double mass_err = 100.0 * ((m / mass_kg) - 1.0);
+    const double fuel_err = 100.0 * ((pred / truth) - 1.0);
+    printf("calibration error, %-24s %2u t: mass %+6.2f %%, aux %6u W, converged %d; next 5 min "
+           "fuel %+6.2f %% (the calibration alone %+7.2f %%)\n",
+           what, mass_kg / 1000U, mass_err, (unsigned)pfe_identify_aux_power_w(&id),
+           pfe_identify_converged(&id) ? 1 : 0, fuel_err, 100.0 * ((pred_cal / truth) - 1.0));
+    assert_signed_range(mass_err, -15.0, 15.0);
+    assert_signed_range(fuel_err, -10.0, 10.0);
+}
+
+static void test_calibration_errors(void **state)
+{
+    (void)state;
+    const unsigned masses[] = {12000U, 40000U, 60000U};
+    for (unsigned k = 0U; k < 3U; k++) {
+        calib_error("none", masses[k], 400000U, 7000U, 6000000U, 4000U);
+        calib_error("eta 0.38 (calib 0.40)", masses[k], 380000U, 7000U, 6000000U, 4000U);
+        calib_error("cr 0.006 (calib 0.007)", masses[k], 400000U, 6000U, 6000000U, 4000U);
+        calib_error("cwAf 6.6 m2 (calib 6.0)", masses[k], 400000U, 7000U, 6600000U, 4000U);
+        calib_error("aux 12 kW (calib 4 kW)", masses[k], 400000U, 7000U, 6000000U, 12000U);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -147,6 +213,7 @@ int main(void)
         cmocka_unit_test(test_60t),
         cmocka_unit_test(test_60t_noisier),
         cmocka_unit_test(test_noise_free),
+        cmocka_unit_test(test_calibration_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
