@@ -214,6 +214,17 @@ static void update_aux(pfe_identify_t *id)
     id->aux_w = (uint32_t)pfe_clamp_i64(p, 0, (int64_t)PFE_ID_AUX_MAX_W);
 }
 
+/* A state outside the bounds the updates keep (memory corrupted): the
+ * means within the window bounds (times 16), the sums within theirs. */
+static bool information_corrupted(const pfe_identify_t *id)
+{
+    const int64_t mx = 16LL * PFE_ID_X_MAX_MW_KG;
+    const int64_t my = 16LL * (int64_t)PFE_POWER_MAX_W;
+    return (id->sxx < 0) || (id->sxx > SXX_MAX) || (id->sxy > SXY_MAX) || (id->sxy < -SXY_MAX) ||
+           (id->var_w2 < 0) || (id->var_w2 > VAR_MAX_W2) || (id->mean_x_q4 > mx) ||
+           (id->mean_x_q4 < -mx) || (id->mean_y_q4 > my) || (id->mean_y_q4 < -my);
+}
+
 /* A window of win_n intervals is complete (header, 1. and 2.). */
 static void close_window(pfe_identify_t *id, int32_t v_mm_s)
 {
@@ -236,14 +247,13 @@ static void close_window(pfe_identify_t *id, int32_t v_mm_s)
         id->mean_y_q4 = 16 * y;
         id->have_mean = true;
     } else {
+        if (information_corrupted(id)) {
+            reset_information(id); /* the bounds kept below cannot be left */
+            return;
+        }
         /* |dx| <= 2 * 10^5 < 2^18, |dy| <= 4 * 10^6 < 2^22. */
         const int64_t dx = x - pfe_rshift_round(id->mean_x_q4, 4U);
         const int64_t dy = y - pfe_rshift_round(id->mean_y_q4, 4U);
-        if ((id->sxx < 0) || (id->sxx > SXX_MAX) || (id->sxy > SXY_MAX) ||
-            (id->sxy < -SXY_MAX) || (id->var_w2 < 0) || (id->var_w2 > VAR_MAX_W2)) {
-            reset_information(id); /* corrupted: the bounds kept below cannot be left */
-            return;
-        }
         const int64_t e2 = residual2(id, dx, dy);
         const int64_t floor_w2 = (int64_t)PFE_ID_RESIDUAL_FLOOR_W * PFE_ID_RESIDUAL_FLOOR_W;
         const int64_t var_w2 = (id->var_w2 > floor_w2) ? id->var_w2 : floor_w2;

@@ -672,6 +672,13 @@ static void test_corrupted_information_resets(void **state)
     assert_int_equal(id->sxx, 0);
     assert_int_equal(id->n_mass, 0);
     assert_int_equal(pfe_identify_mass_kg(id), m);
+    /* A mean far outside the windows' bounds: the same, no overflow. */
+    steep_grades(id, 25000.0, 2400U, -1.0);
+    assert_true(id->n_mass > 0U);
+    id->mean_x_q4 = INT64_MAX / 2;
+    steep_grades(id, 25000.0, 405U, -1.0);
+    assert_int_equal(id->n_mass, 0);
+    assert_in_range(pfe_identify_mass_kg(id), PFE_MASS_MIN_KG, PFE_MASS_MAX_KG);
 }
 
 /* A window beyond 100 W/kg (a rolling coefficient of 0.1, 8 % and 2 m/s^2
