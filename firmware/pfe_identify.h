@@ -94,8 +94,8 @@
  * division. A window's end, every PFE_ID_WINDOW_INTERVALS samples: two
  * divisions by a 16-bit divisor (three 32-bit divisions each) and, on a
  * mass update, one more after normalising its divisor to 16 bits. Measured
- * on the Cortex-M4 (make bench, a 12 t drive): identify_step_mean 209,
- * identify_step_max 760 instructions (the max is a window's end with a mass
+ * on the Cortex-M4 (make bench, a 12 t drive): identify_step_mean 210,
+ * identify_step_max 800 instructions (the max is a window's end with a mass
  * update; a sample alone is below 300). No heap, no floating point,
  * reentrant on distinct states; O(1).
  */
