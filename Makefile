@@ -107,6 +107,12 @@ $(HOSTSAN)/test_predict: tests/host/test_predict.c $(FW_SRC) $(REF_SRC) $(FW_HDR
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(FW_SRC) $(REF_SRC) -lcmocka -lm
 
+# The identification against its double-precision reference and the
+# reference model's truth (sim_host/identify_ref).
+$(HOSTSAN)/test_identify_ref: tests/host/test_identify_ref.c sim_host/identify_ref.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/identify_ref.c $(FW_SRC) $(REF_SRC) -lcmocka -lm
+
 # Every codec signal checked against can_dbc/pfe.dbc, and the other way round.
 $(HOSTSAN)/test_dbc_codec: tests/host/test_dbc_codec.c sim_host/dbc.c sim_host/dbc.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -128,12 +134,14 @@ $(HOSTSAN)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 
 HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_accuracy \
                   $(HOSTSAN)/test_road_csv $(HOSTSAN)/roadgen $(HOSTSAN)/test_dbc_codec \
-                  $(HOSTSAN)/test_hal_fake $(HOSTSAN)/test_hal_replay $(HOSTSAN)/test_predict
+                  $(HOSTSAN)/test_hal_fake $(HOSTSAN)/test_hal_replay $(HOSTSAN)/test_predict \
+                  $(HOSTSAN)/test_identify_ref
 
 test-host: $(HOST_TEST_BINS)
 	@set -e; for t in $(UNIT_TESTS); do echo "== host unit: $$t"; $(HOSTSAN)/unit_$$t; done
 	@echo "== host: test_accuracy"; $(HOSTSAN)/test_accuracy $(ROADS)
 	@echo "== host: test_predict"; $(HOSTSAN)/test_predict $(ROADS)
+	@echo "== host: test_identify_ref"; $(HOSTSAN)/test_identify_ref
 	@echo "== host: test_road_csv"; $(HOSTSAN)/test_road_csv $(ROADS) $(HOSTSAN)/roadgen
 	@echo "== host: test_dbc_codec"; $(HOSTSAN)/test_dbc_codec can_dbc/pfe.dbc
 	@echo "== host: HAL conformance on hal/fake"; $(HOSTSAN)/test_hal_fake
