@@ -17,7 +17,7 @@ const pfe_input_rule_t pfe_input_rules[PFE_IN_COUNT] = {
     /* CVW gross combination weight, kg: the calibration's range */
     [PFE_IN_MASS] = {PFE_PGN_CVW, 1000000U, (int32_t)PFE_MASS_MIN_KG, (int32_t)PFE_MASS_MAX_KG, 0U, 0U},
     /* LFE1 engine fuel rate, nL/s: 0 .. 250 L/h */
-    [PFE_IN_ENGINE_FUEL] = {PFE_PGN_LFE1, 100000U, 0, 69444, 0U, 0U},
+    [PFE_IN_ENGINE_FUEL] = {PFE_PGN_LFE1, 100000U, 0, 69444444, 0U, 0U},
 };
 
 void pfe_input_init(pfe_input_t *in, pfe_input_kind_t kind, uint8_t fixed_source)
