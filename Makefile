@@ -291,7 +291,8 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
       test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
-      thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check test-truck-cal
+      thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check test-truck-cal \
+      test-foreign-trucks
 
 test-bench-check:
 	@sh tests/bench/bench_check_test.sh
