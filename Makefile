@@ -167,7 +167,7 @@ $(GEN)/road_%.c: $(ROADS)/%.csv $(HOST)/road2c
 # The product image: the model's known-answer run over the bundled hilly road.
 $(call m4_image,pfe_mps2,$(FW_SRC) hal/mps2/main_selfcheck.c $(GEN)/road_hilly.c)
 # The firmware running a drive from a log, files through semihosting.
-$(call m4_image,pfe_ecu_mps2,$(FW_SRC) $(ECU_REPLAY_SRC) hal/mps2/main_ecu.c)
+$(call m4_image,pfe_ecu_mps2,$(FW_SRC) $(ECU_REPLAY_SRC) hal/mps2/main_ecu.c hal/mps2/calib_default.c)
 # Instruction counts (make bench).
 $(call m4_image,pfe_bench,$(FW_SRC) tests/bench/m4_bench.c $(GEN)/road_hilly.c)
 # The firmware's unit tests, cross-compiled.
@@ -292,7 +292,7 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
       test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
       thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check test-truck-cal \
-      test-foreign-trucks
+      test-foreign-trucks check-replay-calib
 
 test-bench-check:
 	@sh tests/bench/bench_check_test.sh
