@@ -228,9 +228,9 @@ $(E2E_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 $(E2E_PAYLOAD)/ecu_check: sim_host/ecu_check.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
-$(HOST)/drivegen: sim_host/drivegen.c sim_host/drive_trace.c $(REF_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOST)/drivegen: sim_host/drivegen.c sim_host/drive_trace.c $(REF_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/drivegen.c $(REF_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/drivegen.c $(REF_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) -lm
 $(E2E_PAYLOAD)/drive.log: $(HOST)/drivegen Makefile
 	@mkdir -p $(@D)
 	$(HOST)/drivegen --segment 600:0 --segment 50:0.5 --segment 50:1 --segment 50:1.5 \

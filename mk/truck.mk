@@ -3,7 +3,8 @@
 #
 #   test-truck-cal    the calibration file parser: fields, units, sections,
 #                     errors (CMocka, ASan, UBSan); every tool's --calib
-#                     refuses a bad file with exit status 2
+#                     refuses a bad file with exit status 2, and drivegen,
+#                     pfe_ecu_replay, run_report agree on a 60 t truck
 #   test-foreign-trucks  foreign-truck logs (12 t, 60 t; no SSI, SSI, VDS;
 #                     the engine's LFE1 stopping; hostile variants),
 #                     generated at test time, replayed on the host, judged
@@ -33,9 +34,10 @@ $(HOSTSAN)/test_truck_cal: tests/host/test_truck_cal.c $(TRUCK_CAL_SRC) $(FW_SRC
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(TRUCK_CAL_SRC) $(FW_SRC) -lcmocka
 
-test-truck-cal: $(HOSTSAN)/test_truck_cal $(HOST)/pfe_ecu_replay $(HOST)/pfe_ecu
+test-truck-cal: $(HOSTSAN)/test_truck_cal $(HOST)/pfe_ecu_replay $(HOST)/pfe_ecu $(HOST)/drivegen \
+        $(HOST)/run_report
 	@echo "== host: test_truck_cal"; $(HOSTSAN)/test_truck_cal $(TRUCKS)
-	@sh tests/host/truck_cal_tools.sh $(HOST) $(TRUCKS) $(BUILD)/truck-cal
+	@sh tests/host/truck_cal_tools.sh $(HOST) $(TRUCKS) $(BUILD)/truck-cal $(ROADS)/uphill.csv
 
 $(HOST)/truckgen: sim_host/truckgen.c $(TRUCK_CAL_SRC) $(REF_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
