@@ -312,7 +312,7 @@ bench:
 	@sh scripts/bench_check.sh tests/bench/targets.txt $(BUILD)/bench.out
 
 bench-figures: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf \
-        $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench
+        $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench foreign-bench
 	@$(M4_RUN) $(M4_OUT)/pfe_bench.elf
 	@# The ECU's tick over a whole drive (61.6 s, 6263 ticks) in the image that
 	@# replays it: receive, decode, estimate, encode, send, and the prediction's
