@@ -54,6 +54,8 @@
  *           back at the true speed;
  *   random  10 frames over 1 s from the senders in use: CCVS1 and LFE1 from
  *           the engine, SSI from its sender (--ssi), 8 random bytes each.
+ * The number of bursts and of hostile frames is printed on standard error
+ * ("truckgen: B hostile bursts, F hostile frames").
  * Output: candump's printed form, -t z ("(000.011063)  can0  18FEF100
  * [8]  FF 12 ..."), or with --format log candump -L ("(1700000015.011063)
  * can0 18FEF100#FF12..."); interface --iface (default can0). --truth writes
@@ -431,7 +433,7 @@ static int generate(const options_t *o, const pfe_vehicle_calib_t *veh, const ro
     uint64_t next_burst_us = start_us + 30000000U;
     unsigned burst_left = 0U;
     uint64_t burst_next_us = 0U;
-    unsigned bursts = 0U;
+    unsigned bursts = 0U, hostile_frames = 0U;
     for (uint64_t t_us = 0U; t_us < end_us; t_us += TICK_US) {
         const double t_s = (double)t_us / 1e6;
         while ((phase < o->profile.n - 1) && (t_s >= phase_end_s)) {
@@ -572,6 +574,7 @@ static int generate(const options_t *o, const pfe_vehicle_calib_t *veh, const ro
                 if (push(l, at, &f) != 0) {
                     return -1;
                 }
+                hostile_frames++;
                 burst_left--;
                 burst_next_us = t_us + 100000U;
             }
@@ -581,7 +584,7 @@ static int generate(const options_t *o, const pfe_vehicle_calib_t *veh, const ro
         alt += speed * (TICK_US / 1e6) * grade;
     }
     if (o->hostile != HOSTILE_NONE) {
-        fprintf(stderr, "truckgen: %u hostile bursts\n", bursts);
+        fprintf(stderr, "truckgen: %u hostile bursts, %u hostile frames\n", bursts, hostile_frames);
     }
     return 0;
 }

@@ -13,7 +13,8 @@
 #   - hostile variants (own-address spoof, speed jumps, random payloads) of
 #     the 12 t truck with SSI and of the 60 t truck without: every valid rate
 #     the module sends is the clean run's, but for one frame per burst, and
-#     PFE_Status counts the conflicts or rejections.
+#     PFE_Status counts every spoofed frame as a conflict and every speed
+#     jump as a rejection (random payloads: rejections, at most one each).
 # Random payloads are judged too; while HOSTILE_RANDOM_XFAIL is 1 their
 # failure is reported as a known one (the firmware takes a random speed
 # that happens to lie within the plausible change of the last one) and does
@@ -87,11 +88,16 @@ hostile() { # TRUCK CLEAN KIND EXPECT [truckgen options...]
     shift 4
     h_name=$h_clean-$h_kind
     gen "$h_name" "$h_truck" --hostile "$h_kind" "$@"
-    h_bursts=$(sed -n 's/^truckgen: \([0-9]*\) hostile bursts$/\1/p' "$out/$h_name.gen.err")
+    h_bursts=$(sed -n 's/^truckgen: \([0-9]*\) hostile bursts, .*/\1/p' "$out/$h_name.gen.err")
+    h_frames=$(sed -n 's/^truckgen: .* bursts, \([0-9]*\) hostile frames$/\1/p' "$out/$h_name.gen.err")
+    # every spoofed frame is a conflict, every speed jump a rejection; of
+    # random payloads, those that pass by chance are not
+    h_exact=--exact
+    [ "$h_kind" = random ] && h_exact=
     replay "$h_name" "$out/$h_name.log" --calib "$trucks/truck$h_truck.cal"
     if [ "$h_kind" = random ] && [ "$xfail_random" = 1 ]; then
         "$tools/truck_judge" hostile "$out/$h_clean.rec" "$out/$h_name.rec" --bursts "${h_bursts:-0}" \
-            --name "$(echo "$h_name" | tr - _)" --expect "$h_expect" | tee -a "$out/bench.txt" |
+            --name "$(echo "$h_name" | tr - _)" --expect "$h_expect" --frames "${h_frames:-0}" | tee -a "$out/bench.txt" |
             sed 's/^/foreign: /'
         if [ "$(tail -n 1 "$out/bench.txt" | sed 's/.*: //')" = pass ]; then
             echo "foreign: $h_name: passes now: clear HOSTILE_RANDOM_XFAIL (mk/truck.mk)"
@@ -102,13 +108,32 @@ hostile() { # TRUCK CLEAN KIND EXPECT [truckgen options...]
         fi
         return
     fi
+    # shellcheck disable=SC2086
     judge hostile "$out/$h_clean.rec" "$out/$h_name.rec" --bursts "${h_bursts:-0}" \
-        --name "$(echo "$h_name" | tr - _)" --expect "$h_expect"
+        --name "$(echo "$h_name" | tr - _)" --expect "$h_expect" --frames "${h_frames:-0}" $h_exact
 }
 for kind in spoof:conflicts jump:rejected random:rejected; do
     hostile 12t 12t-ssi "${kind%%:*}" "${kind#*:}" --ssi
     hostile 60t 60t "${kind%%:*}" "${kind#*:}"
 done
+
+# The judge can fail: a wrong grade source, a counter that did not move,
+# hostile frames against a record that has none of them.
+must_fail() { # DESCRIPTION truck_judge arguments...
+    mf_what=$1
+    shift
+    if "$tools/truck_judge" "$@" > "$out/must_fail.txt" 2>&1; then
+        echo "foreign: truck_judge passed $mf_what"
+        fail=1
+    else
+        echo "foreign: truck_judge fails $mf_what, as it should: $(grep "FAIL\|differs\|ends after" "$out/must_fail.txt" | head -n 1)"
+    fi
+}
+must_fail "a record with SSI judged as one without" avail "$out/12t-ssi.rec" --grade-source 2
+must_fail "a clean record judged as spoofed" hostile "$out/60t.rec" "$out/60t.rec" --bursts 10 \
+    --expect conflicts
+must_fail "a 60 t record judged against a 12 t one" hostile "$out/12t.rec" "$out/60t.rec" --bursts 10
+must_fail "the printed and -L forms of two trucks' logs" same "$out/12t.txt" "$out/60t.log"
 
 grep '^bench:' "$out/bench.txt" > "$out/bench.lines"
 [ "$fail" -eq 0 ] && echo "foreign: every foreign-truck check holds"
