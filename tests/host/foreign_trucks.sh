@@ -29,11 +29,11 @@ mkdir -p "$out"
 fail=0
 
 # sh has no local variables: each function's own are prefixed with its name.
-gen() { # NAME TRUCK [truckgen options...]: OUT/NAME.log (candump -L)
+gen() { # NAME TRUCK [truckgen options...]: OUT/NAME.$ext (in the form replayed)
     gen_name=$1 gen_truck=$2
     shift 2
-    "$tools/truckgen" --calib "$trucks/truck$gen_truck.cal" --format log --out "$out/$gen_name.log" \
-        "$@" 2> "$out/$gen_name.gen.err" ||
+    "$tools/truckgen" --calib "$trucks/truck$gen_truck.cal" --format "$form" \
+        --out "$out/$gen_name.$ext" "$@" 2> "$out/$gen_name.gen.err" ||
         { echo "foreign: truckgen $gen_name failed: $(cat "$out/$gen_name.gen.err")"; fail=1; }
 }
 
@@ -52,35 +52,45 @@ judge() { # truck_judge arguments; a failure fails the test
 }
 
 : > "$out/bench.txt"
+# The logs are replayed as written (candump's printed form) once
+# pfe_ecu_replay reads it; until then in the -L form of the same drive.
+"$tools/truckgen" --calib "$trucks/truck12t.cal" --out "$out/probe.txt" --profile 0:1,20:4 \
+    --start-s 0 2> /dev/null
+if "$tools/pfe_ecu_replay" --log "$out/probe.txt" > /dev/null 2>&1; then
+    form=printed ext=txt
+else
+    form=log ext=log
+    echo "foreign: pfe_ecu_replay does not read candump's printed form yet: replaying the -L form"
+fi
 for t in 12t 60t; do
-    gen "$t" "$t"
-    "$tools/truckgen" --calib "$trucks/truck$t.cal" --out "$out/$t.txt" 2> /dev/null
+    "$tools/truckgen" --calib "$trucks/truck$t.cal" --format printed --out "$out/$t.txt" 2> /dev/null
+    "$tools/truckgen" --calib "$trucks/truck$t.cal" --format log --out "$out/$t.log" 2> /dev/null
     "$tools/truck_judge" same "$out/$t.txt" "$out/$t.log" | sed "s/^/foreign: $t: /" || fail=1
     head -n 3 "$out/$t.txt" | sed "s/^/foreign: $t printed: /"
-    replay "$t" "$out/$t.log" --calib "$trucks/truck$t.cal"
+    replay "$t" "$out/$t.$ext" --calib "$trucks/truck$t.cal"
     judge avail "$out/$t.rec" --name "$t" --grade-source 2
-    replay "$t-default" "$out/$t.log"
+    replay "$t-default" "$out/$t.$ext"
     judge avail "$out/$t-default.rec" --name "${t}_default_calib" --grade-source 2
 done
 
 gen 12t-ssi 12t --ssi
-replay 12t-ssi "$out/12t-ssi.log" --calib "$trucks/truck12t.cal"
+replay 12t-ssi "$out/12t-ssi.$ext" --calib "$trucks/truck12t.cal"
 judge avail "$out/12t-ssi.rec" --name 12t_ssi --grade-source 0
 
 # VDS altitude over the hilly road, at the DBC's 100 ms (GradeSource 1) and
 # at J1939-71's 1 s (the module's VDS rule, 100 ms, times it out: flat).
 gen 12t-vds 12t --vds --vds-period-ms 100 --road "$trucks/../roads/hilly.csv"
-replay 12t-vds "$out/12t-vds.log" --calib "$trucks/truck12t.cal"
+replay 12t-vds "$out/12t-vds.$ext" --calib "$trucks/truck12t.cal"
 judge avail "$out/12t-vds.rec" --name 12t_vds --grade-source 1
 gen 12t-vds1s 12t --vds --road "$trucks/../roads/hilly.csv"
-replay 12t-vds1s "$out/12t-vds1s.log" --calib "$trucks/truck12t.cal"
+replay 12t-vds1s "$out/12t-vds1s.$ext" --calib "$trucks/truck12t.cal"
 judge avail "$out/12t-vds1s.rec" --name 12t_vds_1s
 
 # The engine's LFE1 stops after 120 s: the estimate goes on. (The cab
 # controller's LFE1, not available, goes on too: the module still hears
 # another sender of LFE1 and does not send its own.)
 gen 60t-lfe1-stop 60t --engine-fuel-stop-s 120
-replay 60t-lfe1-stop "$out/60t-lfe1-stop.log" --calib "$trucks/truck60t.cal"
+replay 60t-lfe1-stop "$out/60t-lfe1-stop.$ext" --calib "$trucks/truck60t.cal"
 judge avail "$out/60t-lfe1-stop.rec" --name 60t_lfe1_stop --grade-source 2
 
 hostile() { # TRUCK CLEAN KIND EXPECT [truckgen options...]
@@ -94,7 +104,7 @@ hostile() { # TRUCK CLEAN KIND EXPECT [truckgen options...]
     # random payloads, those that pass by chance are not
     h_exact=--exact
     [ "$h_kind" = random ] && h_exact=
-    replay "$h_name" "$out/$h_name.log" --calib "$trucks/truck$h_truck.cal"
+    replay "$h_name" "$out/$h_name.$ext" --calib "$trucks/truck$h_truck.cal"
     if [ "$h_kind" = random ] && [ "$xfail_random" = 1 ]; then
         "$tools/truck_judge" hostile "$out/$h_clean.rec" "$out/$h_name.rec" --bursts "${h_bursts:-0}" \
             --name "$(echo "$h_name" | tr - _)" --expect "$h_expect" --frames "${h_frames:-0}" | tee -a "$out/bench.txt" |
