@@ -4,6 +4,7 @@
  *
  *   truck_judge avail RECORD [--name NAME] [--module-sa SA] [--warmup-s S]
  *                     [--min-pct P] [--grade-source N] [--min-module-lfe1 N]
+ *                     [--truth CSV [--max-fuel-err-pct E]]
  *   truck_judge hostile CLEAN HOSTILE --bursts N [--name NAME] [--module-sa SA]
  *                     [--expect conflicts|rejected [--frames F [--exact]]]
  *   truck_judge same LOG_A LOG_B
@@ -22,7 +23,12 @@
  * it: no module LFE1 within three LFE1 periods (300 ms) after another
  * node's, no HRLFC within 3 s after another's; with --min-module-lfe1, it
  * must have sent at least N LFE1 (the engine's stopped: the module's own
- * estimate takes its place). Prints the figures, the last
+ * estimate takes its place). With --truth (truckgen --truth: the true fuel
+ * used every 100 ms of log time, read against the record's time from its
+ * first frame), the module's own fuel used (PFE_OwnFuel OwnTotalFuelUsed)
+ * from the end of the warm-up to the log's end against the truth's over the
+ * same span, "bench: foreign_NAME_fuel_err_pct X pct"; with
+ * --max-fuel-err-pct, |X| must not exceed E. Prints the figures, the last
  * PFE_Status counters, and "bench: foreign_NAME_available_pct X pct".
  *
  * hostile: HOSTILE is the record of CLEAN's log with hostile frames added
@@ -212,11 +218,89 @@ static unsigned shadowing(const record_t *rec, uint8_t module_sa, uint32_t pgn, 
     return bad;
 }
 
+/* The truth's fuel used (L) at t_s, linear between its 100 ms rows. */
+static double truth_at(const double *t, const double *l, size_t n, double t_s)
+{
+    if (t_s <= t[0]) {
+        return l[0];
+    }
+    for (size_t k = 1U; k < n; k++) {
+        if (t_s <= t[k]) {
+            return l[k - 1U] + ((l[k] - l[k - 1U]) * (t_s - t[k - 1U]) / (t[k] - t[k - 1U]));
+        }
+    }
+    return l[n - 1U];
+}
+
+/* 0 and *err_pct, 1 when there is nothing to compare, 2 on a bad file. */
+static int fuel_against_truth(const record_t *rec, uint8_t sa, uint64_t from_us, uint64_t to_us,
+                              const char *path, const char *name, double *err_pct)
+{
+    FILE *f = fopen(path, "r");
+    if (f == NULL) {
+        fprintf(stderr, "truck_judge: cannot read %s: %s\n", path, strerror(errno));
+        return 2;
+    }
+    static double t[200000], l[200000];
+    size_t n = 0U;
+    char line[256];
+    unsigned long lineno = 0U;
+    while (fgets(line, sizeof line, f) != NULL) {
+        lineno++;
+        double a = 0.0, b = 0.0, c = 0.0, d = 0.0, e = 0.0, g = 0.0;
+        if (lineno == 1U) {
+            continue; /* header */
+        }
+        if ((sscanf(line, "%lf,%lf,%lf,%lf,%lf,%lf", &a, &b, &c, &d, &e, &g) != 6) ||
+            (n == (sizeof t / sizeof t[0])) || ((n > 0U) && !(a > t[n - 1U]))) {
+            fprintf(stderr, "truck_judge: %s:%lu: expected t_s,speed_kmh,grade_pct,force_n,"
+                            "fuel_l_h,fuel_l with t_s increasing\n", path, lineno);
+            fclose(f);
+            return 2;
+        }
+        t[n] = a;
+        l[n] = g;
+        n++;
+    }
+    fclose(f);
+    bool have = false;
+    uint64_t t0 = 0U, t1 = 0U, u0 = 0U, u1 = 0U;
+    for (size_t k = 0U; k < rec->n; k++) {
+        const rec_t *x = &rec->r[k];
+        pfe_msg_own_fuel_t m;
+        if ((x->sa != sa) || (x->pgn != PFE_PGN_OWN_FUEL) || (x->t_us < from_us) ||
+            (x->t_us > to_us) || (pfe_codec_decode_own_fuel(&x->f, &m) != PFE_OK) ||
+            (m.fuel_used_ul.state != PFE_SIG_VALID)) {
+            continue;
+        }
+        if (!have) {
+            t0 = x->t_us;
+            u0 = m.fuel_used_ul.value;
+            have = true;
+        }
+        t1 = x->t_us;
+        u1 = m.fuel_used_ul.value;
+    }
+    if (!have || (n < 2U) || (t1 <= t0)) {
+        printf("truck_judge %s: no own fuel used to compare with the truth\n", name);
+        return 1;
+    }
+    const double module_l = (double)(u1 - u0) / 1e6;
+    const double truth_l = truth_at(t, l, n, (double)(t1 - rec->first_us) / 1e6) -
+                           truth_at(t, l, n, (double)(t0 - rec->first_us) / 1e6);
+    *err_pct = (truth_l > 0.0) ? (100.0 * (module_l - truth_l) / truth_l) : 0.0;
+    printf("truck_judge %s: own fuel used from %.1f s to %.1f s: module %.3f L, truth %.3f L "
+           "(%+.2f %%)\n", name, (double)(t0 - rec->first_us) / 1e6,
+           (double)(t1 - rec->first_us) / 1e6, module_l, truth_l, *err_pct);
+    return (truth_l > 0.0) ? 0 : 1;
+}
+
 static int avail(int argc, char **argv)
 {
     const char *path = NULL, *name = "log";
     unsigned long module_sa = 0x8CU, grade_source = 99U, min_lfe1 = 0U;
-    double warmup_s = 10.0, min_pct = 95.0;
+    double warmup_s = 10.0, min_pct = 95.0, max_err_pct = -1.0;
+    const char *truth_path = NULL;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         if (a[0] != '-') {
@@ -235,6 +319,10 @@ static int avail(int argc, char **argv)
             bad = cli_parse_double(v, 0.0, 100.0, &min_pct);
         } else if (strcmp(a, "--grade-source") == 0) {
             bad = cli_parse_ul(v, 0U, 3U, &grade_source);
+        } else if (strcmp(a, "--truth") == 0) {
+            truth_path = v;
+        } else if (strcmp(a, "--max-fuel-err-pct") == 0) {
+            bad = cli_parse_double(v, 0.0, 1000.0, &max_err_pct);
         } else if (strcmp(a, "--min-module-lfe1") == 0) {
             bad = cli_parse_ul(v, 0U, 10000000U, &min_lfe1);
         } else {
@@ -314,6 +402,19 @@ static int avail(int argc, char **argv)
     if ((lfe1_bad > 0U) || (hr_bad > 0U)) {
         printf("truck_judge %s: FAIL: the module shadowed the engine's fuel PGNs\n", name);
         fail = 1;
+    }
+    if (truth_path != NULL) {
+        double err_pct = 0.0;
+        const int trc = fuel_against_truth(&rec, sa, from_us, to_us, truth_path, name, &err_pct);
+        if (trc == 2) {
+            return 2;
+        }
+        printf("bench: foreign_%s_fuel_err_pct %.2f pct\n", name, err_pct);
+        if ((trc != 0) || ((max_err_pct >= 0.0) && (fabs(err_pct) > max_err_pct))) {
+            printf("truck_judge %s: FAIL: own fuel used %.2f %% off the truth (at most %.1f %%)\n",
+                   name, err_pct, max_err_pct);
+            fail = 1;
+        }
     }
     const counters_t c = last_status(&rec, sa);
     printf("truck_judge %s: last PFE_Status: InputsRejected %lu, AddressConflicts %lu%s\n", name,
