@@ -63,19 +63,21 @@ $(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM
 
 # The module as a Linux process on SocketCAN (hal/socketcan, hal/posix).
 ECU_LOOP_SRC := hal/hal_ecu_loop.c
+# The truck calibration file (--calib) of the host tools that run the model.
+TRUCK_CAL_SRC := sim_host/truck_cal.c
 ECU_HOST_SRC := sim_host/ecu_main.c $(ECU_LOOP_SRC) hal/socketcan/hal_socketcan.c \
-    hal/posix/hal_nvm_file.c hal/posix/hal_time_posix.c
+    hal/posix/hal_nvm_file.c hal/posix/hal_time_posix.c $(TRUCK_CAL_SRC)
 HAL_HDR := $(sort $(wildcard hal/*.h hal/*/*.h))
-$(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+$(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
 
 # The same firmware over a log in logical time (hal/replay); its twin on the
 # Cortex-M4 is $(M4_OUT)/pfe_ecu_mps2.elf.
 ECU_REPLAY_SRC := $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/replay/hal_replay_ecu.c
-$(HOST)/pfe_ecu_replay: sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+$(HOST)/pfe_ecu_replay: sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(FW_SRC)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(TRUCK_CAL_SRC) $(FW_SRC)
 
 $(HOST)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -159,6 +161,7 @@ include mk/run.mk
 include mk/thesis.mk
 include mk/hardening.mk
 include mk/fuzz.mk
+include mk/truck.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
@@ -172,7 +175,7 @@ $(GEN)/road_%.c: $(ROADS)/%.csv $(HOST)/road2c
 # The product image: the model's known-answer run over the bundled hilly road.
 $(call m4_image,pfe_mps2,$(FW_SRC) hal/mps2/main_selfcheck.c $(GEN)/road_hilly.c)
 # The firmware running a drive from a log, files through semihosting.
-$(call m4_image,pfe_ecu_mps2,$(FW_SRC) $(ECU_REPLAY_SRC) hal/mps2/main_ecu.c)
+$(call m4_image,pfe_ecu_mps2,$(FW_SRC) $(ECU_REPLAY_SRC) hal/mps2/main_ecu.c hal/mps2/calib_default.c)
 # Instruction counts (make bench).
 $(call m4_image,pfe_bench,$(FW_SRC) tests/bench/m4_bench.c $(GEN)/road_hilly.c)
 # The firmware's unit tests, cross-compiled.
@@ -233,9 +236,9 @@ $(E2E_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 $(E2E_PAYLOAD)/ecu_check: sim_host/ecu_check.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
-$(HOST)/drivegen: sim_host/drivegen.c sim_host/drive_trace.c $(REF_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOST)/drivegen: sim_host/drivegen.c sim_host/drive_trace.c $(REF_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/drivegen.c $(REF_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/drivegen.c $(REF_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) -lm
 $(E2E_PAYLOAD)/drive.log: $(HOST)/drivegen Makefile
 	@mkdir -p $(@D)
 	$(HOST)/drivegen --segment 600:0 --segment 50:0.5 --segment 50:1 --segment 50:1.5 \
@@ -296,7 +299,8 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
       test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
-      thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check
+      thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check test-truck-cal \
+      test-foreign-trucks check-replay-calib
 
 test-bench-check:
 	@sh tests/bench/bench_check_test.sh
@@ -316,7 +320,7 @@ bench:
 	@sh scripts/bench_check.sh tests/bench/targets.txt $(BUILD)/bench.out
 
 bench-figures: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf \
-        $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench
+        $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench foreign-bench
 	@$(M4_RUN) $(M4_OUT)/pfe_bench.elf
 	@# The ECU's tick over a whole drive (61.6 s, 6263 ticks) in the image that
 	@# replays it: receive, decode, estimate, encode, send, and the prediction's

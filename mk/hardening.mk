@@ -128,7 +128,7 @@ coverage: $(addprefix $(COV_OUT)/,$(COV_TESTS))
 # (hal_mps2_stack_used_bytes, "bench: stack_used") cross-checks the bound.
 STACK_IMAGES := pfe_mps2 pfe_ecu_mps2 pfe_bench
 STACK_SRC_pfe_mps2 := $(FW_SRC) hal/mps2/main_selfcheck.c $(BUILD)/gen/road_hilly.c
-STACK_SRC_pfe_ecu_mps2 := $(FW_SRC) $(ECU_REPLAY_SRC) hal/mps2/main_ecu.c
+STACK_SRC_pfe_ecu_mps2 := $(FW_SRC) $(ECU_REPLAY_SRC) hal/mps2/main_ecu.c hal/mps2/calib_default.c
 STACK_SRC_pfe_bench := $(FW_SRC) tests/bench/m4_bench.c $(BUILD)/gen/road_hilly.c
 STACK_CHECK := python3 scripts/stack_check.py --indirect scripts/stack_indirect.txt
 

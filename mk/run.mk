@@ -62,9 +62,9 @@ $(HOST)/pfe_record: sim_host/pfe_record.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -o $@ $<
 
-$(HOST)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOST)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) -lm
 
 # ---------------------------------------------------------------- drive logs
 
@@ -151,9 +151,9 @@ $(HOSTSAN)/test_capture: tests/host/test_capture.c $(CAPTURE_SRC) $(CAPTURE_HDR)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(CAPTURE_SRC) sim_host/drive_trace.c \
 	    $(FW_SRC) -lcmocka -lm
 
-$(HOSTSAN)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) -lm
 
 $(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/capture.c sim_host/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)

@@ -19,6 +19,14 @@ static int configure(bus_ref_t *r, unsigned n, unsigned position, uint32_t gap_m
     pfe_platoon_config_t pc;
     pfe_platoon_config_uniform(&pc, n, gap_mm, &pfe_default_vehicle, &pfe_default_env,
                                &pfe_default_drag);
+    for (unsigned k = 0U; k < pc.n_vehicles; k++) {
+        if (r->vehicle_at[k] != NULL) {
+            pc.vehicle[k] = r->vehicle_at[k];
+        }
+    }
+    if ((position < pc.n_vehicles) && (r->own_vehicle != NULL)) {
+        pc.vehicle[position] = r->own_vehicle;
+    }
     ref_platoon_t trial;
     if ((pc.n_vehicles != n) || (position >= n) || (ref_platoon_init(&trial, &pc) != 0)) {
         return -1;
@@ -37,7 +45,18 @@ static int configure(bus_ref_t *r, unsigned n, unsigned position, uint32_t gap_m
 
 int bus_ref_init(bus_ref_t *r, unsigned n_vehicles, unsigned position, uint32_t gap_mm)
 {
+    return bus_ref_init_vehicles(r, n_vehicles, position, gap_mm, NULL, NULL);
+}
+
+int bus_ref_init_vehicles(bus_ref_t *r, unsigned n_vehicles, unsigned position, uint32_t gap_mm,
+                          const pfe_vehicle_calib_t *own_vehicle,
+                          const pfe_vehicle_calib_t *const vehicle_at[PFE_MAX_VEHICLES])
+{
     memset(r, 0, sizeof *r);
+    r->own_vehicle = own_vehicle;
+    for (unsigned k = 0U; (vehicle_at != NULL) && (k < PFE_MAX_VEHICLES); k++) {
+        r->vehicle_at[k] = vehicle_at[k];
+    }
     if (configure(r, n_vehicles, position, gap_mm) != 0) {
         return -1;
     }

@@ -40,6 +40,9 @@
 #define BUS_REF_TICK_US 10000U
 
 typedef struct {
+    /* the trucks' calibrations (bus_ref_init_vehicles(); NULL: default) */
+    const pfe_vehicle_calib_t *own_vehicle;
+    const pfe_vehicle_calib_t *vehicle_at[PFE_MAX_VEHICLES];
     /* platoon in use */
     unsigned n_vehicles, position;
     uint32_t gap_mm;
@@ -63,6 +66,15 @@ typedef struct {
 /* Starts with a default platoon of n_vehicles, the own truck at position,
  * gap_mm apart. Returns 0, or -1 when that platoon is invalid. */
 int bus_ref_init(bus_ref_t *r, unsigned n_vehicles, unsigned position, uint32_t gap_mm);
+
+/* The same with the trucks' calibrations, as the module's
+ * pfe_ecu_config_t own_vehicle and vehicle_at[] (sim_host/truck_cal.h): the
+ * own truck's at its position, vehicle_at[k] (NULL: pfe_default_vehicle) at
+ * position k; own_vehicle NULL is the default. The calibrations must
+ * outlive *r. */
+int bus_ref_init_vehicles(bus_ref_t *r, unsigned n_vehicles, unsigned position, uint32_t gap_mm,
+                          const pfe_vehicle_calib_t *own_vehicle,
+                          const pfe_vehicle_calib_t *const vehicle_at[PFE_MAX_VEHICLES]);
 
 /* Steps every tick due at or before t_us. The first call starts the clock
  * (first tick at t_us + 10 ms). */

@@ -3,8 +3,9 @@
  *
  *   pfe_ecu --iface IF --nvm FILE [--address SA] [--save-interval-ms MS]
  *           [--vehicles N --position P --gap-cm D] [--allow-real-bus]
- *           [--duration-s S]
+ *           [--duration-s S] [--calib FILE]
  *
+ * FILE: the truck's calibration (sim_host/truck_cal.h), else the default.
  * Runs the ECU loop (firmware/pfe_ecu.h, through hal/hal_ecu_loop.h) every
  * 10 ms on CLOCK_MONOTONIC absolute deadlines (hal/posix/hal_time_posix.h): receives every frame waiting
  * on IF, ticks, sends what the tick produced, saves fuel totals to FILE
@@ -35,6 +36,7 @@
 #include "hal/posix/hal_nvm_file.h"
 #include "hal/posix/hal_time_posix.h"
 #include "hal/socketcan/hal_socketcan.h"
+#include "truck_cal.h"
 
 static volatile sig_atomic_t g_stop;
 
@@ -55,7 +57,7 @@ static void usage(FILE *f)
 {
     fprintf(f, "usage: pfe_ecu --iface IF --nvm FILE [--address SA] [--save-interval-ms MS]\n"
                "               [--vehicles N --position P --gap-cm D] [--allow-real-bus]\n"
-               "               [--duration-s S]\n");
+               "               [--duration-s S] [--calib FILE]\n");
 }
 
 int main(int argc, char **argv)
@@ -65,6 +67,13 @@ int main(int argc, char **argv)
     unsigned long address = PFE_ECU_DEFAULT_ADDRESS, interval = 10000U, vehicles = 1U;
     unsigned long position = 0U, gap_cm = 1000U, duration = 0U;
     unsigned flags = 0U;
+    static truck_cal_t cal;
+    bool have_cal = false;
+    char cal_err[TRUCK_CAL_ERR_MAX];
+    if (truck_cal_take_arg(&argc, argv, &cal, &have_cal, cal_err, sizeof cal_err) != 0) {
+        fprintf(stderr, "pfe_ecu: %s\n", cal_err);
+        return 2;
+    }
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
@@ -128,6 +137,9 @@ int main(int argc, char **argv)
     pfe_ecu_config_t cfg;
     hal_ecu_loop_config(&cfg, (uint8_t)address, (uint32_t)interval, (uint32_t)vehicles,
                         (uint32_t)position, (uint32_t)gap_cm * 10U);
+    if (have_cal) {
+        truck_cal_apply(&cal, &cfg);
+    }
     static pfe_ecu_t ecu;
     static hal_ecu_loop_t loop;
     hal_time_t *clock = hal_time_posix();

@@ -3,9 +3,11 @@
  * logical time (hal/replay/hal_replay_ecu.h).
  *
  *   pfe_ecu_replay --log LOG [--record OUT] [--address SA] [--save-interval-ms MS]
- *                  [--vehicles N] [--position P] [--gap-cm D]
+ *                  [--vehicles N] [--position P] [--gap-cm D] [--calib FILE]
  *
- * LOG is a candump log (`candump -L`). The ECU ticks every 10 ms of log
+ * FILE is the truck's calibration (sim_host/truck_cal.h; default: the
+ * default calibration); the Cortex-M4 image has it compiled in instead
+ * (sim_host/cal2c.c). LOG is a candump log (`candump -L`). The ECU ticks every 10 ms of log
  * time from the first frame to one second after the last, with NVM erased at
  * start; OUT (default: none) receives the bus as candump -L would show it,
  * the log's frames and the module's. The Cortex-M4 image
@@ -23,6 +25,7 @@
 #include <string.h>
 
 #include "hal/replay/hal_replay_ecu.h"
+#include "sim_host/truck_cal.h"
 
 static int32_t read_file(void *ctx, uint8_t *buf, uint32_t len)
 {
@@ -41,6 +44,13 @@ static int32_t write_file(void *ctx, const uint8_t *buf, uint32_t len)
 
 int main(int argc, char **argv)
 {
+    static truck_cal_t cal;
+    bool have_cal = false;
+    char cal_err[TRUCK_CAL_ERR_MAX];
+    if (truck_cal_take_arg(&argc, argv, &cal, &have_cal, cal_err, sizeof cal_err) != 0) {
+        fprintf(stderr, "pfe_ecu_replay: %s\n", cal_err);
+        return 2;
+    }
     hal_replay_ecu_args_t args;
     char err[160];
     const int arc = hal_replay_ecu_args(argc, argv, &args, err, sizeof err);
@@ -49,8 +59,11 @@ int main(int argc, char **argv)
         if (arc < 0) {
             fprintf(stderr, "pfe_ecu_replay: %s\n", err);
         }
-        fprintf(f, "usage: pfe_ecu_replay " HAL_REPLAY_ECU_USAGE "\n");
+        fprintf(f, "usage: pfe_ecu_replay " HAL_REPLAY_ECU_USAGE " [--calib FILE]\n");
         return (arc > 0) ? 0 : 2;
+    }
+    if (have_cal) {
+        truck_cal_apply(&cal, &args.cfg);
     }
     FILE *in = fopen(args.log_path, "rb");
     if (in == NULL) {

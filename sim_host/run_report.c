@@ -5,8 +5,10 @@
  *   run_report CAPTURE.log [--module-sa SA] [--warmup-s S] [--rate-floor-l-h F]
  *              [--vehicles N] [--position P] [--gap-m D]
  *              [--out PREFIX] [--no-plot] [--gnuplot PROG] [--title TEXT]
- *              [--expect FILE] [--junit FILE]
+ *              [--expect FILE] [--junit FILE] [--calib FILE]
  *
+ * --calib: the trucks' calibration (sim_host/truck_cal.h) the module ran
+ * with, for the reference too (default: the default calibration).
  * CAPTURE is a candump log (candump -L, sim_host/pfe_record; format in
  * sim_host/capture.h) of one bus: the inputs (CCVS1, SSI, PFE_PlatoonConfig,
  * anything not from the module) and the module's answers (source address
@@ -64,6 +66,7 @@
 #include "../firmware/pfe_codec.h"
 #include "bus_ref.h"
 #include "capture.h"
+#include "truck_cal.h"
 
 extern char **environ;
 
@@ -164,6 +167,7 @@ typedef struct {
     unsigned long module_sa, vehicles, position;
     double warmup_s, floor_l_h, gap_m;
     bool plot;
+    const truck_cal_t *cal;            /* --calib, or NULL */
 } options_t;
 
 static void usage(FILE *f)
@@ -172,7 +176,7 @@ static void usage(FILE *f)
             "usage: run_report CAPTURE.log [--module-sa SA] [--warmup-s S] [--rate-floor-l-h F]\n"
             "                  [--vehicles N] [--position P] [--gap-m D]\n"
             "                  [--out PREFIX] [--no-plot] [--gnuplot PROG] [--title TEXT]\n"
-            "                  [--expect FILE] [--junit FILE]\n"
+            "                  [--expect FILE] [--junit FILE] [--calib FILE]\n"
             "quantities for --expect:\n");
     for (int k = 0; k < Q_COUNT; k++) {
         fprintf(f, "  %-28s %s\n", g_q[k].name, g_q[k].what);
@@ -708,8 +712,13 @@ static int ref_run(const capture_t *cap, const options_t *o, ref_run_t *run)
 {
     memset(run, 0, sizeof *run);
     static bus_ref_t ref;
-    if (bus_ref_init(&ref, (unsigned)o->vehicles, (unsigned)o->position,
-                     (uint32_t)lround(o->gap_m * 1000.0)) != 0) {
+    const pfe_vehicle_calib_t *at[PFE_MAX_VEHICLES] = {NULL};
+    for (unsigned k = 0U; (o->cal != NULL) && (k < PFE_MAX_VEHICLES); k++) {
+        at[k] = o->cal->at_set[k] ? &o->cal->at[k] : NULL;
+    }
+    if (bus_ref_init_vehicles(&ref, (unsigned)o->vehicles, (unsigned)o->position,
+                              (uint32_t)lround(o->gap_m * 1000.0),
+                              (o->cal != NULL) ? &o->cal->own : NULL, at) != 0) {
         return -1;
     }
     size_t room_t = 0U, room_s = 0U;
@@ -1202,10 +1211,18 @@ static void print_summary(const options_t *o, const capture_t *cap, const analys
 int main(int argc, char **argv)
 {
     static options_t o;
+    static truck_cal_t cal;
+    bool have_cal = false;
+    char cal_err[TRUCK_CAL_ERR_MAX];
+    if (truck_cal_take_arg(&argc, argv, &cal, &have_cal, cal_err, sizeof cal_err) != 0) {
+        fprintf(stderr, "run_report: %s\n", cal_err);
+        return 2;
+    }
     const int prc = parse_args(argc, argv, &o);
     if (prc != 0) {
         return prc;
     }
+    o.cal = have_cal ? &cal : NULL;
     static expect_t ex[MAX_EXPECT];
     int n_ex = 0;
     if (o.expect != NULL) {

@@ -12,6 +12,8 @@
  * encode, send, NVM) and of feeding the bus (reading and parsing the log,
  * writing the record) apart, mean and worst per 10 ms:
  *   "m4: ticks K ecu_tick_insn_mean M ecu_tick_insn_max X feed_insn_mean F feed_insn_max G"
+ * The truck calibration is compiled in (hal/mps2/image_calib.h): the
+ * image built with CALIB=FILE runs as pfe_ecu_replay --calib FILE.
  * Exit status as pfe_ecu_replay: 0; 1 bad log lines or a failed record; 2
  * bad arguments, an unreadable log or one without frames.
  */
@@ -19,6 +21,7 @@
 #include <stdint.h>
 
 #include "hal/mps2/icount.h"
+#include "hal/mps2/image_calib.h"
 #include "hal/mps2/semihost.h"
 #include "hal/replay/hal_replay_ecu.h"
 
@@ -91,6 +94,8 @@ int main(void)
         say("usage: pfe_ecu_mps2 ", HAL_REPLAY_ECU_USAGE, "");
         return (arc > 0) ? 0 : 2;
     }
+    /* The truck's calibration is compiled in (make firmware CALIB=FILE). */
+    image_calib_apply(&args.cfg);
     static int32_t in;
     static int32_t out = -1;
     in = hal_mps2_file_open(args.log_path, HAL_MPS2_FILE_READ);
