@@ -154,6 +154,7 @@ include mk/fuzz.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
+include mk/stm32.mk
 
 GEN := $(BUILD)/gen
 .SECONDARY: $(GEN)/road_hilly.c

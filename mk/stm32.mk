@@ -1,0 +1,105 @@
+# STM32F405 target (hal/stm32f4/): the product image, its QEMU twin, and
+# the host tests of its drivers against register models (tests/stm32/).
+#
+# Included from the top-level Makefile after mk/m4.mk and the Cortex-M4
+# flags (uses M4_CC, M4_CFLAGS, M4_ARCH_FLAGS, M4_OUT, m4__objs, M4_CHECK,
+# FW_SRC, ECU_LOOP_SRC, HOST_CC, SAN_CFLAGS, HAL_HDR, GEN, DEPS_STAMP).
+#
+#   make stm32            build/stm32/pfe_stm32.elf, .bin, .hex (and its size)
+#   make test-stm32-host  bxCAN and flash drivers on their register models,
+#                         the HAL conformance suite on bxCAN, the time base
+#   make test-stm32-qemu  the image's bring-up and self-check on QEMU's
+#                         netduinoplus2: the digest equals the host's
+#   make test-stm32-bench-guide  the bench guide's commands that run here
+#   make test-stm32       all three
+#
+# Sources are compiled once, as the mps2 images' are ($(M4_OUT)/obj/image/),
+# so the firmware objects are the same in both targets.
+
+STM32_OUT := $(BUILD)/stm32
+STM32_LDSCRIPT := linker/stm32f405.ld
+STM32_HAL_SRC := hal/stm32f4/startup.c hal/stm32f4/hal_stm32_board.c \
+    hal/stm32f4/hal_stm32_time.c
+STM32_ECU_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c $(STM32_HAL_SRC) \
+    hal/stm32f4/hal_stm32_can.c hal/stm32f4/hal_stm32_nvm.c hal/stm32f4/main_ecu.c
+STM32_QEMU_SRC := $(FW_SRC) $(STM32_HAL_SRC) hal/stm32f4/main_qemu.c \
+    hal/mps2/main_selfcheck.c hal/mps2/semihost.c $(GEN)/road_hilly.c
+
+# Recursive: $@ is the ELF being linked.
+STM32_LDFLAGS = $(M4_ARCH_FLAGS) -O2 -flto -nostartfiles -nostdlib -Llinker -T$(STM32_LDSCRIPT) \
+    -Wl,--gc-sections -Wl,-Map=$(@:.elf=.map) -Wl,--start-group -lc -lgcc -Wl,--end-group
+
+.PHONY: stm32 test-stm32 test-stm32-host test-stm32-qemu test-stm32-bench-guide
+
+$(STM32_OUT)/pfe_stm32.elf: $(call m4__objs,image,$(STM32_ECU_SRC)) $(STM32_LDSCRIPT)
+	@mkdir -p $(@D)
+	$(M4_CC) $(filter %.o,$^) $(STM32_LDFLAGS) -o $@
+	$(M4_CHECK) $@ || { rm -f $@; exit 1; }
+
+# The self-check's road does not fit the product's 48 KiB: QEMU's flash is 1 MiB.
+$(STM32_OUT)/pfe_stm32_qemu.elf: $(call m4__objs,image,$(STM32_QEMU_SRC)) $(STM32_LDSCRIPT)
+	@mkdir -p $(@D)
+	$(M4_CC) $(filter %.o,$^) $(STM32_LDFLAGS) -Wl,--defsym=__flash_size=512K -o $@
+	$(M4_CHECK) $@ || { rm -f $@; exit 1; }
+
+# The image for a programmer: .hex (and the ELF) program only the sectors
+# they cover; the .bin spans the NVM sectors (filled 0xFF), so writing it
+# erases the saved fuel totals (docs/stm32_bench.md).
+$(STM32_OUT)/%.bin: $(STM32_OUT)/%.elf
+	$(M4_CROSS)objcopy -O binary --gap-fill 0xFF $< $@
+$(STM32_OUT)/%.hex: $(STM32_OUT)/%.elf
+	$(M4_CROSS)objcopy -O ihex $< $@
+
+stm32: $(DEPS_STAMP) $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32.bin $(STM32_OUT)/pfe_stm32.hex
+	@$(M4_SIZE) $(STM32_OUT)/pfe_stm32.elf
+
+# ---------------------------------------------------------------- host tests (register models)
+
+STM32_SAN_CFLAGS := $(SAN_CFLAGS) -DHAL_STM32_REG_MODEL -I. -Ifirmware
+STM32_MODEL_SRC := tests/stm32/bxcan_model.c tests/stm32/flash_model.c tests/stm32/reg_model.c
+STM32_MODEL_HDR := $(wildcard tests/stm32/*.h)
+
+$(HOSTSAN)/test_stm32_can: tests/stm32/test_stm32_can.c hal/stm32f4/hal_stm32_can.c hal/hal_can_mem.c \
+        $(ECU_LOOP_SRC) $(FW_SRC) $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(filter %.c,$^) -lcmocka
+
+$(HOSTSAN)/test_hal_stm32: tests/stm32/test_hal_stm32.c tests/hal/hal_conformance.c hal/stm32f4/hal_stm32_can.c \
+        hal/stm32f4/hal_stm32_time.c hal/hal_can_mem.c $(FW_SRC) $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) \
+        $(HAL_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(filter %.c,$^) -lcmocka
+
+$(HOSTSAN)/test_stm32_nvm: tests/stm32/test_stm32_nvm.c hal/stm32f4/hal_stm32_nvm.c $(FW_SRC) \
+        $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(filter %.c,$^) -lcmocka
+
+$(HOSTSAN)/test_stm32_board: tests/stm32/test_stm32_board.c hal/stm32f4/hal_stm32_time.c \
+        hal/stm32f4/hal_stm32_board.c $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(filter %.c,$^) -lcmocka
+
+STM32_HOST_TESTS := test_stm32_can test_hal_stm32 test_stm32_nvm test_stm32_board
+
+test-stm32-host: $(addprefix $(HOSTSAN)/,$(STM32_HOST_TESTS))
+	@set -e; for t in $(STM32_HOST_TESTS); do echo "== host: $$t (register models)"; $(HOSTSAN)/$$t; done
+
+# ---------------------------------------------------------------- QEMU netduinoplus2
+
+STM32_QEMU := scripts/run_stm32_qemu.sh
+
+test-stm32-qemu: $(STM32_OUT)/pfe_stm32_qemu.elf $(HOST)/selfcheck
+	$(HOST)/selfcheck $(ROADS)/hilly.csv > $(STM32_OUT)/selfcheck_host.txt
+	$(STM32_QEMU) $(STM32_OUT)/pfe_stm32_qemu.elf $(STM32_OUT)/uart.txt > $(STM32_OUT)/selfcheck_stm32.txt
+	@cat $(STM32_OUT)/uart.txt
+	@grep -q '^stm32: clock hse [01] pll [01] reset_cause [0-3]$$' $(STM32_OUT)/uart.txt
+	@grep -q '^stm32: selfcheck_us [0-9]* timer_ok 1 stack_used [0-9]*$$' $(STM32_OUT)/uart.txt
+	@grep -q digest $(STM32_OUT)/selfcheck_host.txt
+	@if cmp -s $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_stm32.txt; then \
+	    echo "selfcheck: host and STM32F405 (netduinoplus2) outputs identical:"; \
+	    grep digest $(STM32_OUT)/selfcheck_host.txt; \
+	else echo "selfcheck: host and STM32F405 outputs differ:"; \
+	    diff $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_stm32.txt; exit 1; fi
+
+test-stm32: test-stm32-host test-stm32-qemu test-stm32-bench-guide
