@@ -56,29 +56,30 @@ stm32: $(DEPS_STAMP) $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32.bin $(STM
 # ---------------------------------------------------------------- host tests (register models)
 
 STM32_SAN_CFLAGS := $(SAN_CFLAGS) -DHAL_STM32_REG_MODEL -I. -Ifirmware
-STM32_MODEL_SRC := tests/stm32/bxcan_model.c tests/stm32/flash_model.c tests/stm32/reg_model.c
+STM32_MODEL_SRC := tests/stm32/bxcan_model.c tests/stm32/flash_model.c tests/stm32/reg_model.c \
+    hal/stm32f4/hal_stm32_can.c hal/hal_can_mem.c
 STM32_MODEL_HDR := $(wildcard tests/stm32/*.h)
 
 $(HOSTSAN)/test_stm32_can: tests/stm32/test_stm32_can.c hal/stm32f4/hal_stm32_can.c hal/hal_can_mem.c \
         $(ECU_LOOP_SRC) $(FW_SRC) $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(filter %.c,$^) -lcmocka
+	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(sort $(filter %.c,$^)) -lcmocka
 
 $(HOSTSAN)/test_hal_stm32: tests/stm32/test_hal_stm32.c tests/hal/hal_conformance.c hal/stm32f4/hal_stm32_can.c \
         hal/stm32f4/hal_stm32_time.c hal/hal_can_mem.c $(FW_SRC) $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) \
         $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(filter %.c,$^) -lcmocka
+	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(sort $(filter %.c,$^)) -lcmocka
 
 $(HOSTSAN)/test_stm32_nvm: tests/stm32/test_stm32_nvm.c hal/stm32f4/hal_stm32_nvm.c $(FW_SRC) \
         $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(filter %.c,$^) -lcmocka
+	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(sort $(filter %.c,$^)) -lcmocka
 
 $(HOSTSAN)/test_stm32_board: tests/stm32/test_stm32_board.c hal/stm32f4/hal_stm32_time.c \
         hal/stm32f4/hal_stm32_board.c $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(filter %.c,$^) -lcmocka
+	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(sort $(filter %.c,$^)) -lcmocka
 
 STM32_HOST_TESTS := test_stm32_can test_hal_stm32 test_stm32_nvm test_stm32_board
 

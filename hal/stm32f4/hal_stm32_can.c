@@ -337,6 +337,9 @@ void hal_stm32_can_rx0_isr(hal_can_t *can)
         }
         HAL_STM32_WR(r->rf0r, CAN_RF0R_RFOM0); /* release the output mailbox */
     }
+    if ((r->rf0r & CAN_RF0R_FULL0) != 0U) {
+        HAL_STM32_WR(r->rf0r, CAN_RF0R_FULL0); /* drained: write 1 to clear */
+    }
 }
 
 int hal_can_receive(hal_can_t *can, hal_can_rx_t *out)
@@ -374,9 +377,18 @@ void hal_stm32_can_sce_isr(hal_can_t *can)
     HAL_STM32_WR(r->msr, CAN_MSR_ERRI); /* write 1 to clear */
 }
 
-void hal_stm32_can_state(const hal_can_t *can, hal_stm32_can_state_t *out)
+void hal_stm32_can_state(hal_can_t *can, hal_stm32_can_state_t *out)
 {
     const uint32_t esr = can->regs->esr;
+    /* ERRI comes only when a flag is set, never when bus-off ends: the
+     * main loop sees the recovery, so that the next entry counts. */
+    if ((esr & CAN_ESR_BOFF) == 0U) {
+        const uint32_t primask = hal_stm32_irq_save();
+        if ((can->regs->esr & CAN_ESR_BOFF) == 0U) {
+            can->bus_off_seen = false;
+        }
+        hal_stm32_irq_restore(primask);
+    }
     out->rx_overruns = can->rx_fifo_overruns + can->rx_ring_drops;
     out->bus_off_events = can->bus_off_events;
     out->tx_error_counter = (uint8_t)(esr >> CAN_ESR_TEC_SHIFT);

@@ -120,7 +120,9 @@ int hal_stm32_can_sleep(hal_can_t *can);
 int hal_stm32_can_wake(hal_can_t *can);
 
 /* The controller's error state, for pfe_ecu_note_bus_state():
- * rx_overruns counts FIFO overruns and ring overflows. O(1). */
+ * rx_overruns counts FIFO overruns and ring overflows. Call it every tick:
+ * it also notes the end of a bus-off (no interrupt says so), so that two
+ * bus-off periods count two events when a tick lies between them. O(1). */
 typedef struct {
     uint32_t rx_overruns;
     uint32_t bus_off_events;
@@ -130,7 +132,7 @@ typedef struct {
     bool error_passive;
     bool bus_off;
 } hal_stm32_can_state_t;
-void hal_stm32_can_state(const hal_can_t *can, hal_stm32_can_state_t *out);
+void hal_stm32_can_state(hal_can_t *can, hal_stm32_can_state_t *out);
 
 /* Interrupt handlers' bodies: CAN1_RX0 (FIFO 0 pending or overrun),
  * CAN1_TX (a mailbox emptied), CAN1_SCE (error status changed). */

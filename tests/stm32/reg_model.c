@@ -17,6 +17,8 @@ uint32_t reg_model_irq_depth;
 uint32_t reg_model_writes;
 volatile uint32_t *reg_model_rc_w0;  /* a register whose flags clear by writing 0 */
 volatile uint32_t *reg_model_w1c;    /* a register whose flags clear by writing 1 */
+volatile uint32_t *reg_model_ro;     /* a register with read-only bits */
+uint32_t reg_model_ro_mask;
 
 stm32_tim_t *reg_model_tim;
 
@@ -36,6 +38,8 @@ void hal_stm32_reg_write(volatile uint32_t *reg, uint32_t value)
         *reg &= value;
     } else if (reg == reg_model_w1c) {
         *reg &= ~value;
+    } else if (reg == reg_model_ro) {
+        *reg = (*reg & reg_model_ro_mask) | (value & ~reg_model_ro_mask);
     } else {
         *reg = value;
     }
