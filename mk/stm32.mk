@@ -3,7 +3,8 @@
 #
 # Included from the top-level Makefile after mk/m4.mk and the Cortex-M4
 # flags (uses M4_CC, M4_CFLAGS, M4_ARCH_FLAGS, M4_OUT, m4__objs, M4_CHECK,
-# FW_SRC, ECU_LOOP_SRC, HOST_CC, SAN_CFLAGS, HAL_HDR, GEN, DEPS_STAMP).
+# FW_SRC, ECU_LOOP_SRC, HOST_CC, SAN_CFLAGS, HAL_HDR, DEPS_STAMP, and the
+# Makefile's rule for $(BUILD)/gen/road_hilly.c).
 #
 #   make stm32            build/stm32/pfe_stm32.elf, .bin, .hex (and its size)
 #   make test-stm32-host  bxCAN and flash drivers on their register models,
@@ -23,7 +24,7 @@ STM32_HAL_SRC := hal/stm32f4/startup.c hal/stm32f4/hal_stm32_board.c \
 STM32_ECU_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c $(STM32_HAL_SRC) \
     hal/stm32f4/hal_stm32_can.c hal/stm32f4/hal_stm32_nvm.c hal/stm32f4/main_ecu.c
 STM32_QEMU_SRC := $(FW_SRC) $(STM32_HAL_SRC) hal/stm32f4/main_qemu.c \
-    hal/mps2/main_selfcheck.c hal/mps2/semihost.c $(GEN)/road_hilly.c
+    hal/mps2/main_selfcheck.c hal/mps2/semihost.c $(BUILD)/gen/road_hilly.c
 
 # Recursive: $@ is the ELF being linked.
 STM32_LDFLAGS = $(M4_ARCH_FLAGS) -O2 -flto -nostartfiles -nostdlib -Llinker -T$(STM32_LDSCRIPT) \
@@ -90,17 +91,21 @@ test-stm32-host: $(addprefix $(HOSTSAN)/,$(STM32_HOST_TESTS))
 
 STM32_QEMU := scripts/run_stm32_qemu.sh
 
-test-stm32-qemu: $(STM32_OUT)/pfe_stm32_qemu.elf $(HOST)/selfcheck
+test-stm32-qemu: $(STM32_OUT)/pfe_stm32_qemu.elf $(HOST)/selfcheck $(M4_OUT)/pfe_mps2.elf
 	$(HOST)/selfcheck $(ROADS)/hilly.csv > $(STM32_OUT)/selfcheck_host.txt
+	$(M4_RUN) $(M4_OUT)/pfe_mps2.elf > $(STM32_OUT)/selfcheck_mps2.txt
 	$(STM32_QEMU) $(STM32_OUT)/pfe_stm32_qemu.elf $(STM32_OUT)/uart.txt > $(STM32_OUT)/selfcheck_stm32.txt
 	@cat $(STM32_OUT)/uart.txt
 	@grep -q '^stm32: clock hse [01] pll [01] reset_cause [0-3]$$' $(STM32_OUT)/uart.txt
+	@grep -q '^stm32: ticks_10ms 10 ticks_us 1000[0-9][0-9]$$' $(STM32_OUT)/uart.txt
 	@grep -q '^stm32: selfcheck_us [0-9]* timer_ok 1 stack_used [0-9]*$$' $(STM32_OUT)/uart.txt
 	@grep -q digest $(STM32_OUT)/selfcheck_host.txt
-	@if cmp -s $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_stm32.txt; then \
-	    echo "selfcheck: host and STM32F405 (netduinoplus2) outputs identical:"; \
+	@if cmp -s $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_stm32.txt && \
+	    cmp -s $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_mps2.txt; then \
+	    echo "selfcheck: host, mps2-an386 and STM32F405 (netduinoplus2) outputs identical:"; \
 	    grep digest $(STM32_OUT)/selfcheck_host.txt; \
-	else echo "selfcheck: host and STM32F405 outputs differ:"; \
-	    diff $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_stm32.txt; exit 1; fi
+	else echo "selfcheck: host, mps2 and STM32F405 outputs differ:"; \
+	    diff $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_stm32.txt; \
+	    diff $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_mps2.txt; exit 1; fi
 
 test-stm32: test-stm32-host test-stm32-qemu test-stm32-bench-guide

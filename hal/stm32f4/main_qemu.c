@@ -12,8 +12,11 @@
  * and console, without CAN and NVM (HAL_STM32_QEMU: this build only). Over
  * USART1 it prints
  *   "stm32: clock hse H pll P reset_cause C"   before the run,
+ *   "stm32: ticks_10ms N ticks_us U"                then ten 10 ms waits,
  *   "stm32: selfcheck_us T timer_ok K stack_used S" after it,
- * timer_ok 1 when the time base moved forward during the run; and exits
+ * timer_ok 1 when the time base moved forward during the run, N the waits
+ * that returned at or after their deadline (10), U their total time
+ * (100000 and a little more); and exits
  * through semihosting with the run's status (an unhandled exception: 128 +
  * its number).
  */
@@ -76,6 +79,20 @@ void hal_stm32_pre_main(void)
 void hal_stm32_post_main(int rc)
 {
     const uint64_t end = hal_stm32_now_us();
+    /* Ten 10 ms ticks on absolute deadlines, as the product's loop waits. */
+    uint64_t deadline = end;
+    uint32_t reached = 0U;
+    for (uint32_t k = 0U; k < 10U; k++) {
+        deadline += 10000U;
+        if ((hal_time_wait_until_us(&s_time, deadline) == 0) && (hal_stm32_now_us() >= deadline)) {
+            reached++;
+        }
+    }
+    hal_stm32_console_write(USART1, "stm32: ticks_10ms ");
+    put_u64(reached);
+    hal_stm32_console_write(USART1, " ticks_us ");
+    put_u64(hal_stm32_now_us() - end);
+    hal_stm32_console_write(USART1, "\n");
     hal_stm32_console_write(USART1, "stm32: selfcheck_us ");
     put_u64(end - s_start_us);
     hal_stm32_console_write(USART1, " timer_ok ");
