@@ -21,9 +21,15 @@ STM32_OUT := $(BUILD)/stm32
 STM32_LDSCRIPT := linker/stm32f405.ld
 STM32_HAL_SRC := hal/stm32f4/startup.c hal/stm32f4/hal_stm32_board.c \
     hal/stm32f4/hal_stm32_time.c
-STM32_ECU_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c $(STM32_HAL_SRC) \
+STM32_ECU_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c $(STM32_HAL_SRC) hal/stm32f4/hal_stm32_tick.c \
     hal/stm32f4/hal_stm32_can.c hal/stm32f4/hal_stm32_nvm.c hal/stm32f4/main_ecu.c
-STM32_QEMU_SRC := $(FW_SRC) $(STM32_HAL_SRC) hal/stm32f4/main_qemu.c \
+# The bench: the mps2 ECU replay (hal/mps2/main_ecu.c, hal/replay) on this
+# board, TIM2 counting instructions under QEMU (hal/stm32f4/icount_tim2.c).
+STM32_BENCH_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c \
+    hal/replay/hal_replay_ecu.c hal/stm32f4/startup.c hal/stm32f4/hal_stm32_board.c \
+    hal/stm32f4/hal_stm32_time.c hal/stm32f4/icount_tim2.c hal/stm32f4/main_bench_glue.c \
+    hal/mps2/main_ecu.c hal/mps2/semihost.c
+STM32_QEMU_SRC := $(FW_SRC) $(STM32_HAL_SRC) hal/stm32f4/hal_stm32_tick.c hal/stm32f4/main_qemu.c \
     hal/mps2/main_selfcheck.c hal/mps2/semihost.c $(BUILD)/gen/road_hilly.c
 
 # Recursive: $@ is the ELF being linked.
@@ -41,6 +47,12 @@ $(STM32_OUT)/pfe_stm32.elf: $(call m4__objs,image,$(STM32_ECU_SRC)) $(STM32_LDSC
 $(STM32_OUT)/pfe_stm32_qemu.elf: $(call m4__objs,image,$(STM32_QEMU_SRC)) $(STM32_LDSCRIPT)
 	@mkdir -p $(@D)
 	$(M4_CC) $(filter %.o,$^) $(STM32_LDFLAGS) -Wl,--defsym=__flash_size=512K -o $@
+	$(M4_CHECK) $@ || { rm -f $@; exit 1; }
+
+$(STM32_OUT)/pfe_stm32_bench.elf: $(call m4__objs,image,$(STM32_BENCH_SRC)) $(STM32_LDSCRIPT)
+	@mkdir -p $(@D)
+	$(M4_CC) $(filter %.o,$^) $(STM32_LDFLAGS) -Wl,--defsym=__flash_size=512K \
+	    -Wl,--defsym=__ram_size=128K -o $@
 	$(M4_CHECK) $@ || { rm -f $@; exit 1; }
 
 # The image for a programmer: .hex (and the ELF) program only the sectors
@@ -67,7 +79,8 @@ $(HOSTSAN)/test_stm32_can: tests/stm32/test_stm32_can.c hal/stm32f4/hal_stm32_ca
 	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(sort $(filter %.c,$^)) -lcmocka
 
 $(HOSTSAN)/test_hal_stm32: tests/stm32/test_hal_stm32.c tests/hal/hal_conformance.c hal/stm32f4/hal_stm32_can.c \
-        hal/stm32f4/hal_stm32_time.c hal/hal_can_mem.c $(FW_SRC) $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) \
+        hal/stm32f4/hal_stm32_time.c hal/stm32f4/hal_stm32_tick.c hal/hal_can_mem.c $(FW_SRC) \
+        $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) \
         $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(sort $(filter %.c,$^)) -lcmocka
@@ -77,7 +90,7 @@ $(HOSTSAN)/test_stm32_nvm: tests/stm32/test_stm32_nvm.c hal/stm32f4/hal_stm32_nv
 	@mkdir -p $(@D)
 	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(sort $(filter %.c,$^)) -lcmocka
 
-$(HOSTSAN)/test_stm32_board: tests/stm32/test_stm32_board.c hal/stm32f4/hal_stm32_time.c \
+$(HOSTSAN)/test_stm32_board: tests/stm32/test_stm32_board.c hal/stm32f4/hal_stm32_time.c hal/stm32f4/hal_stm32_tick.c \
         hal/stm32f4/hal_stm32_board.c $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(sort $(filter %.c,$^)) -lcmocka
@@ -109,3 +122,18 @@ test-stm32-qemu: $(STM32_OUT)/pfe_stm32_qemu.elf $(HOST)/selfcheck $(M4_OUT)/pfe
 	    diff $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_mps2.txt; exit 1; fi
 
 test-stm32: test-stm32-host test-stm32-qemu test-stm32-bench-guide
+
+# ---------------------------------------------------------------- bench (make bench)
+
+# Sizes of the product image (flash = text + data, RAM = data + bss with
+# the stack, as scripts/check_image.sh counts them; heap: the size of any
+# heap section, none), and the ECU's tick over the replayed drive on
+# netduinoplus2, in instructions (TIM2 under -icount: exact).
+.PHONY: stm32-bench
+stm32-bench: $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32_bench.elf $(BUILD)/e2e/payload/drive.log
+	@$(M4_CHECK) --bench pfe_stm32 $(STM32_OUT)/pfe_stm32.elf
+	@echo "bench: pfe_stm32_heap $$($(M4_SIZE) -A $(STM32_OUT)/pfe_stm32.elf | \
+	    awk '/heap/ { n += $$2 } END { print n + 0 }') bytes"
+	@$(STM32_QEMU) $(STM32_OUT)/pfe_stm32_bench.elf /dev/null --log $(BUILD)/e2e/payload/drive.log | \
+	    awk '/^m4:/ { print "bench: stm32_ecu_drive_tick_mean " $$5 " insn"; \
+	    print "bench: stm32_ecu_drive_tick_max " $$7 " insn"; ok = 1 } END { exit !ok }'

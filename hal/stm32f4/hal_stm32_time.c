@@ -61,30 +61,3 @@ void hal_stm32_time_isr(hal_time_t *t)
     /* Flags clear by writing 0 (rc_w0); the others are written 1, unchanged. */
     HAL_STM32_WR(t->tim->sr, ~(sr & (TIM_SR_UIF | TIM_SR_CC1IF)));
 }
-
-uint64_t hal_time_now_us(hal_time_t *time)
-{
-    (void)time;
-    return hal_stm32_now_us();
-}
-
-int hal_time_wait_until_us(hal_time_t *time, uint64_t deadline_us)
-{
-    if (hal_stm32_now_us() >= deadline_us) {
-        time->waits_late++;
-        return 0;
-    }
-    /* Compare channel 1 at the deadline's low word wakes the core. */
-    HAL_STM32_WR(time->tim->ccr1, (uint32_t)deadline_us);
-    HAL_STM32_WR(time->tim->sr, ~TIM_SR_CC1IF);
-    HAL_STM32_WR(time->tim->dier, TIM_DIER_UIE | TIM_DIER_CC1IE);
-    while (hal_stm32_now_us() < deadline_us) {
-#ifndef HAL_STM32_REG_MODEL
-        if (time->sleep_between != 0U) {
-            __asm__ volatile("wfi" ::: "memory");
-        }
-#endif
-    }
-    HAL_STM32_WR(time->tim->dier, TIM_DIER_UIE);
-    return 0;
-}
