@@ -289,7 +289,7 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
       test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
-      thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check
+      thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check test-stm32
 
 test-bench-check:
 	@sh tests/bench/bench_check_test.sh
@@ -309,7 +309,7 @@ bench:
 	@sh scripts/bench_check.sh tests/bench/targets.txt $(BUILD)/bench.out
 
 bench-figures: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf \
-        $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench
+        $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench stm32-bench
 	@$(M4_RUN) $(M4_OUT)/pfe_bench.elf
 	@# The ECU's tick over a whole drive (61.6 s, 6263 ticks) in the image that
 	@# replays it: receive, decode, estimate, encode, send, and the prediction's

@@ -27,6 +27,7 @@
 #include "hal/stm32f4/hal_stm32_can.h"
 #include "hal/stm32f4/hal_stm32_nvm.h"
 #include "hal/stm32f4/hal_stm32_time.h"
+#include "hal/stm32f4/startup.h"
 
 #define CAN_BITRATE_BPS 250000U
 #define SAVE_INTERVAL_MS 60000U
