@@ -19,7 +19,7 @@ void hal_stm32_clock_init(stm32_rcc_t *rcc, stm32_flash_t *flash, hal_stm32_cloc
     HAL_STM32_WR(rcc->cr, rcc->cr | RCC_CR_HSEON);
     out->hse = wait_set(&rcc->cr, RCC_CR_HSERDY, HAL_STM32_HSE_TIMEOUT);
     /* PLLCFGR: PLLM 5:0, PLLN 14:6, PLLP 17:16 ((P / 2) - 1), SRC 22, PLLQ 27:24. */
-    const uint32_t common = (336U << 6) | (0U << 16) | (7U << 24);
+    const uint32_t common = ((uint32_t)336U << 6) | ((uint32_t)0U << 16) | ((uint32_t)7U << 24);
     if (out->hse) {
         HAL_STM32_WR(rcc->pllcfgr, common | 8U | RCC_PLLCFGR_SRC_HSE);
     } else {
@@ -82,8 +82,8 @@ void hal_stm32_console_init(stm32_rcc_t *rcc, stm32_gpio_t *gpioa, stm32_usart_t
     HAL_STM32_WR(rcc->ahb1enr, rcc->ahb1enr | RCC_AHB1ENR_GPIOA);
     HAL_STM32_WR(rcc->apb2enr, rcc->apb2enr | RCC_APB2ENR_USART1);
     /* PA9 alternate function 7 (USART1_TX). */
-    HAL_STM32_WR(gpioa->moder, (gpioa->moder & ~(3U << 18)) | (2U << 18));
-    HAL_STM32_WR(gpioa->afr[1], (gpioa->afr[1] & ~(0xFU << 4)) | (7U << 4));
+    HAL_STM32_WR(gpioa->moder, (gpioa->moder & ~((uint32_t)3U << 18)) | ((uint32_t)2U << 18));
+    HAL_STM32_WR(gpioa->afr[1], (gpioa->afr[1] & ~((uint32_t)0xFU << 4)) | ((uint32_t)7U << 4));
     HAL_STM32_WR(usart->brr, (apb2_hz + (115200U / 2U)) / 115200U);
     HAL_STM32_WR(usart->cr1, USART_CR1_UE | USART_CR1_TE);
 }

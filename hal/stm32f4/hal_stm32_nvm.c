@@ -93,6 +93,26 @@ static const uint32_t *find_any(const hal_nvm_t *nvm, uint32_t slot)
     return r;
 }
 
+/* A record's 28 bytes as 7 little-endian words, and back. */
+static void to_words(const uint8_t *b, uint32_t w[DATA_WORDS])
+{
+    for (uint32_t k = 0U; k < DATA_WORDS; k++) {
+        const uint8_t *p = &b[4U * k];
+        w[k] = (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
+               ((uint32_t)p[3] << 24);
+    }
+}
+
+static void to_bytes(const uint32_t *w, uint8_t *b)
+{
+    for (uint32_t k = 0U; k < DATA_WORDS; k++) {
+        b[4U * k] = (uint8_t)w[k];
+        b[(4U * k) + 1U] = (uint8_t)(w[k] >> 8);
+        b[(4U * k) + 2U] = (uint8_t)(w[k] >> 16);
+        b[(4U * k) + 3U] = (uint8_t)(w[k] >> 24);
+    }
+}
+
 int hal_nvm_read(hal_nvm_t *nvm, uint32_t slot, uint8_t buf[PFE_NVM_RECORD_SIZE])
 {
     if (slot >= PFE_NVM_SLOTS) {
@@ -102,7 +122,7 @@ int hal_nvm_read(hal_nvm_t *nvm, uint32_t slot, uint8_t buf[PFE_NVM_RECORD_SIZE]
     if (r == NULL) {
         (void)memset(buf, 0xFF, PFE_NVM_RECORD_SIZE);
     } else {
-        (void)memcpy(buf, &r[1], PFE_NVM_RECORD_SIZE);
+        to_bytes(&r[1], buf);
     }
     return 0;
 }
@@ -134,7 +154,7 @@ static int unlock(const hal_nvm_t *nvm)
     return wait_idle(nvm, HAL_STM32_NVM_PROGRAM_TIMEOUT_US);
 }
 
-static void lock(const hal_nvm_t *nvm)
+static void lock(hal_nvm_t *nvm)
 {
     HAL_STM32_WR(nvm->regs->cr, FLASH_CR_LOCK);
 }
@@ -194,7 +214,10 @@ static int append(hal_nvm_t *nvm, uint32_t slot, const uint32_t data[DATA_WORDS]
  * carrying over the latest record of `keep_slot`. */
 static int switch_sector(hal_nvm_t *nvm, uint32_t keep_slot)
 {
-    const uint32_t k = (nvm->active < 0) ? 0U : (uint32_t)(1 - nvm->active);
+    uint32_t k = 0U; /* none active yet: sector 0 */
+    if (nvm->active == 0) {
+        k = 1U;
+    }
     uint32_t *s = nvm->sector[k];
     uint32_t kept[DATA_WORDS];
     const uint32_t *old = find_any(nvm, keep_slot);
@@ -223,7 +246,7 @@ int hal_nvm_write(hal_nvm_t *nvm, uint32_t slot, const uint8_t buf[PFE_NVM_RECOR
         return HAL_EINVAL;
     }
     uint32_t data[DATA_WORDS];
-    (void)memcpy(data, buf, sizeof data);
+    to_words(buf, data);
     int rc = unlock(nvm);
     /* No room for this record: the other sector, which has room for it
      * and the one carried over. */

@@ -44,9 +44,7 @@ extern uint32_t __nvm_sector2[];
 
 static hal_can_t s_can;
 static hal_time_t s_time;
-static hal_nvm_t s_nvm;
 static pfe_ecu_t s_ecu;
-static hal_ecu_loop_t s_loop;
 
 void CAN1_TX_IRQHandler(void);
 void CAN1_RX0_IRQHandler(void);
@@ -77,8 +75,8 @@ static void can_pins(void)
 {
     HAL_STM32_WR(RCC->ahb1enr, RCC->ahb1enr | RCC_AHB1ENR_GPIOB);
     /* PB8, PB9: alternate function 9 (CAN1), pull-up on RX. */
-    HAL_STM32_WR(GPIOB->moder, (GPIOB->moder & ~(0xFU << 16)) | (0xAU << 16));
-    HAL_STM32_WR(GPIOB->pupdr, (GPIOB->pupdr & ~(3U << 16)) | (1U << 16));
+    HAL_STM32_WR(GPIOB->moder, (GPIOB->moder & ~((uint32_t)0xFU << 16)) | ((uint32_t)0xAU << 16));
+    HAL_STM32_WR(GPIOB->pupdr, (GPIOB->pupdr & ~((uint32_t)3U << 16)) | ((uint32_t)1U << 16));
     HAL_STM32_WR(GPIOB->afr[1], (GPIOB->afr[1] & ~0xFFU) | 0x99U);
 }
 
@@ -94,6 +92,8 @@ static void note_device_state(void)
 
 int main(void)
 {
+    static hal_nvm_t s_nvm;
+    static hal_ecu_loop_t s_loop;
     hal_stm32_clock_t clock;
     hal_stm32_clock_init(RCC, FLASH_R, &clock);
     const uint32_t cause = hal_stm32_reset_cause(RCC);
@@ -106,8 +106,8 @@ int main(void)
     /* A controller that does not start leaves the module off the bus; the
      * ECU still runs and saves, and the watchdog still guards it. */
     (void)hal_stm32_can_init(&s_can, CAN1, CAN_BITRATE_BPS);
-    STM32_NVIC_ISER0 = (1U << STM32_IRQ_CAN1_TX) | (1U << STM32_IRQ_CAN1_RX0) |
-                       (1U << STM32_IRQ_CAN1_SCE) | (1U << STM32_IRQ_TIM2);
+    STM32_NVIC_ISER0 = ((uint32_t)1U << STM32_IRQ_CAN1_TX) | ((uint32_t)1U << STM32_IRQ_CAN1_RX0) |
+                       ((uint32_t)1U << STM32_IRQ_CAN1_SCE) | ((uint32_t)1U << STM32_IRQ_TIM2);
     hal_stm32_nvm_init(&s_nvm, FLASH_R, __nvm_sector1, 1U, __nvm_sector2, 2U);
 
     pfe_ecu_config_t cfg;

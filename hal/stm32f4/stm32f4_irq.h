@@ -25,6 +25,7 @@ static inline uint32_t hal_stm32_irq_save(void)
 
 static inline void hal_stm32_irq_restore(uint32_t primask)
 {
+    (void)primask; /* used by the asm, which the MISRA checker does not read */
     __asm__ volatile("msr primask, %0" ::"r"(primask) : "memory");
 }
 #endif

@@ -71,53 +71,53 @@ typedef struct {
 
 #define STM32_CAN1_BASE 0x40006400U
 
-#define CAN_MCR_INRQ (1U << 0)
-#define CAN_MCR_SLEEP (1U << 1)
-#define CAN_MCR_TXFP (1U << 2)
-#define CAN_MCR_RFLM (1U << 3)
-#define CAN_MCR_NART (1U << 4)
-#define CAN_MCR_AWUM (1U << 5)
-#define CAN_MCR_ABOM (1U << 6)
-#define CAN_MCR_RESET (1U << 15)
+#define CAN_MCR_INRQ ((uint32_t)1U << 0)
+#define CAN_MCR_SLEEP ((uint32_t)1U << 1)
+#define CAN_MCR_TXFP ((uint32_t)1U << 2)
+#define CAN_MCR_RFLM ((uint32_t)1U << 3)
+#define CAN_MCR_NART ((uint32_t)1U << 4)
+#define CAN_MCR_AWUM ((uint32_t)1U << 5)
+#define CAN_MCR_ABOM ((uint32_t)1U << 6)
+#define CAN_MCR_RESET ((uint32_t)1U << 15)
 
-#define CAN_MSR_INAK (1U << 0)
-#define CAN_MSR_SLAK (1U << 1)
-#define CAN_MSR_ERRI (1U << 2)
+#define CAN_MSR_INAK ((uint32_t)1U << 0)
+#define CAN_MSR_SLAK ((uint32_t)1U << 1)
+#define CAN_MSR_ERRI ((uint32_t)1U << 2)
 
-#define CAN_TSR_RQCP0 (1U << 0)
-#define CAN_TSR_TXOK0 (1U << 1)
-#define CAN_TSR_RQCP1 (1U << 8)
-#define CAN_TSR_RQCP2 (1U << 16)
-#define CAN_TSR_TME0 (1U << 26)
+#define CAN_TSR_RQCP0 ((uint32_t)1U << 0)
+#define CAN_TSR_TXOK0 ((uint32_t)1U << 1)
+#define CAN_TSR_RQCP1 ((uint32_t)1U << 8)
+#define CAN_TSR_RQCP2 ((uint32_t)1U << 16)
+#define CAN_TSR_TME0 ((uint32_t)1U << 26)
 
-#define CAN_RF0R_FMP0 (3U << 0)
-#define CAN_RF0R_FULL0 (1U << 3)
-#define CAN_RF0R_FOVR0 (1U << 4)
-#define CAN_RF0R_RFOM0 (1U << 5)
+#define CAN_RF0R_FMP0 ((uint32_t)3U << 0)
+#define CAN_RF0R_FULL0 ((uint32_t)1U << 3)
+#define CAN_RF0R_FOVR0 ((uint32_t)1U << 4)
+#define CAN_RF0R_RFOM0 ((uint32_t)1U << 5)
 
-#define CAN_IER_TMEIE (1U << 0)
-#define CAN_IER_FMPIE0 (1U << 1)
-#define CAN_IER_FOVIE0 (1U << 3)
-#define CAN_IER_EWGIE (1U << 8)
-#define CAN_IER_EPVIE (1U << 9)
-#define CAN_IER_BOFIE (1U << 10)
-#define CAN_IER_ERRIE (1U << 15)
+#define CAN_IER_TMEIE ((uint32_t)1U << 0)
+#define CAN_IER_FMPIE0 ((uint32_t)1U << 1)
+#define CAN_IER_FOVIE0 ((uint32_t)1U << 3)
+#define CAN_IER_EWGIE ((uint32_t)1U << 8)
+#define CAN_IER_EPVIE ((uint32_t)1U << 9)
+#define CAN_IER_BOFIE ((uint32_t)1U << 10)
+#define CAN_IER_ERRIE ((uint32_t)1U << 15)
 
-#define CAN_ESR_EWGF (1U << 0)
-#define CAN_ESR_EPVF (1U << 1)
-#define CAN_ESR_BOFF (1U << 2)
+#define CAN_ESR_EWGF ((uint32_t)1U << 0)
+#define CAN_ESR_EPVF ((uint32_t)1U << 1)
+#define CAN_ESR_BOFF ((uint32_t)1U << 2)
 #define CAN_ESR_TEC_SHIFT 16U
 #define CAN_ESR_REC_SHIFT 24U
 
-#define CAN_TIR_TXRQ (1U << 0)
-#define CAN_TIR_IDE (1U << 2)
+#define CAN_TIR_TXRQ ((uint32_t)1U << 0)
+#define CAN_TIR_IDE ((uint32_t)1U << 2)
 #define CAN_TIR_EXID_SHIFT 3U
 #define CAN_TIR_STID_SHIFT 21U
-#define CAN_RIR_RTR (1U << 1)
+#define CAN_RIR_RTR ((uint32_t)1U << 1)
 
-#define CAN_FMR_FINIT (1U << 0)
+#define CAN_FMR_FINIT ((uint32_t)1U << 0)
 #define CAN_FMR_CAN2SB_SHIFT 8U
-#define CAN_FMR_CAN2SB_MASK (0x3FU << 8)
+#define CAN_FMR_CAN2SB_MASK ((uint32_t)0x3FU << 8)
 
 /* ------------------------------------------------------------- flash interface */
 
@@ -133,26 +133,26 @@ typedef struct {
 #define STM32_FLASH_R_BASE 0x40023C00U
 
 #define FLASH_ACR_LATENCY_5WS 5U
-#define FLASH_ACR_PRFTEN (1U << 8)
-#define FLASH_ACR_ICEN (1U << 9)
-#define FLASH_ACR_DCEN (1U << 10)
+#define FLASH_ACR_PRFTEN ((uint32_t)1U << 8)
+#define FLASH_ACR_ICEN ((uint32_t)1U << 9)
+#define FLASH_ACR_DCEN ((uint32_t)1U << 10)
 #define FLASH_KEY1 0x45670123U
 #define FLASH_KEY2 0xCDEF89ABU
-#define FLASH_SR_EOP (1U << 0)
-#define FLASH_SR_OPERR (1U << 1)
-#define FLASH_SR_WRPERR (1U << 4)
-#define FLASH_SR_PGAERR (1U << 5)
-#define FLASH_SR_PGPERR (1U << 6)
-#define FLASH_SR_PGSERR (1U << 7)
-#define FLASH_SR_BSY (1U << 16)
+#define FLASH_SR_EOP ((uint32_t)1U << 0)
+#define FLASH_SR_OPERR ((uint32_t)1U << 1)
+#define FLASH_SR_WRPERR ((uint32_t)1U << 4)
+#define FLASH_SR_PGAERR ((uint32_t)1U << 5)
+#define FLASH_SR_PGPERR ((uint32_t)1U << 6)
+#define FLASH_SR_PGSERR ((uint32_t)1U << 7)
+#define FLASH_SR_BSY ((uint32_t)1U << 16)
 #define FLASH_SR_ERRORS (FLASH_SR_OPERR | FLASH_SR_WRPERR | FLASH_SR_PGAERR | \
                          FLASH_SR_PGPERR | FLASH_SR_PGSERR)
-#define FLASH_CR_PG (1U << 0)
-#define FLASH_CR_SER (1U << 1)
+#define FLASH_CR_PG ((uint32_t)1U << 0)
+#define FLASH_CR_SER ((uint32_t)1U << 1)
 #define FLASH_CR_SNB_SHIFT 3U
-#define FLASH_CR_PSIZE_X32 (2U << 8)
-#define FLASH_CR_STRT (1U << 16)
-#define FLASH_CR_LOCK (1U << 31)
+#define FLASH_CR_PSIZE_X32 ((uint32_t)2U << 8)
+#define FLASH_CR_STRT ((uint32_t)1U << 16)
+#define FLASH_CR_LOCK ((uint32_t)1U << 31)
 
 /* ------------------------------------------------------------- RCC */
 
@@ -188,33 +188,33 @@ typedef struct {
 
 #define STM32_RCC_BASE 0x40023800U
 
-#define RCC_CR_HSION (1U << 0)
-#define RCC_CR_HSIRDY (1U << 1)
-#define RCC_CR_HSEON (1U << 16)
-#define RCC_CR_HSERDY (1U << 17)
-#define RCC_CR_PLLON (1U << 24)
-#define RCC_CR_PLLRDY (1U << 25)
-#define RCC_PLLCFGR_SRC_HSE (1U << 22)
+#define RCC_CR_HSION ((uint32_t)1U << 0)
+#define RCC_CR_HSIRDY ((uint32_t)1U << 1)
+#define RCC_CR_HSEON ((uint32_t)1U << 16)
+#define RCC_CR_HSERDY ((uint32_t)1U << 17)
+#define RCC_CR_PLLON ((uint32_t)1U << 24)
+#define RCC_CR_PLLRDY ((uint32_t)1U << 25)
+#define RCC_PLLCFGR_SRC_HSE ((uint32_t)1U << 22)
 #define RCC_CFGR_SW_PLL 2U
-#define RCC_CFGR_SWS_MASK (3U << 2)
-#define RCC_CFGR_SWS_PLL (2U << 2)
-#define RCC_CFGR_PPRE1_DIV4 (5U << 10)
-#define RCC_CFGR_PPRE2_DIV2 (4U << 13)
-#define RCC_AHB1ENR_GPIOA (1U << 0)
-#define RCC_AHB1ENR_GPIOB (1U << 1)
-#define RCC_APB1ENR_TIM2 (1U << 0)
-#define RCC_APB1ENR_CAN1 (1U << 25)
-#define RCC_APB1ENR_PWR (1U << 28)
-#define RCC_APB2ENR_USART1 (1U << 4)
-#define RCC_CSR_LSION (1U << 0)
-#define RCC_CSR_RMVF (1U << 24)
-#define RCC_CSR_BORRSTF (1U << 25)
-#define RCC_CSR_PINRSTF (1U << 26)
-#define RCC_CSR_PORRSTF (1U << 27)
-#define RCC_CSR_SFTRSTF (1U << 28)
-#define RCC_CSR_IWDGRSTF (1U << 29)
-#define RCC_CSR_WWDGRSTF (1U << 30)
-#define RCC_CSR_LPWRRSTF (1U << 31)
+#define RCC_CFGR_SWS_MASK ((uint32_t)3U << 2)
+#define RCC_CFGR_SWS_PLL ((uint32_t)2U << 2)
+#define RCC_CFGR_PPRE1_DIV4 ((uint32_t)5U << 10)
+#define RCC_CFGR_PPRE2_DIV2 ((uint32_t)4U << 13)
+#define RCC_AHB1ENR_GPIOA ((uint32_t)1U << 0)
+#define RCC_AHB1ENR_GPIOB ((uint32_t)1U << 1)
+#define RCC_APB1ENR_TIM2 ((uint32_t)1U << 0)
+#define RCC_APB1ENR_CAN1 ((uint32_t)1U << 25)
+#define RCC_APB1ENR_PWR ((uint32_t)1U << 28)
+#define RCC_APB2ENR_USART1 ((uint32_t)1U << 4)
+#define RCC_CSR_LSION ((uint32_t)1U << 0)
+#define RCC_CSR_RMVF ((uint32_t)1U << 24)
+#define RCC_CSR_BORRSTF ((uint32_t)1U << 25)
+#define RCC_CSR_PINRSTF ((uint32_t)1U << 26)
+#define RCC_CSR_PORRSTF ((uint32_t)1U << 27)
+#define RCC_CSR_SFTRSTF ((uint32_t)1U << 28)
+#define RCC_CSR_IWDGRSTF ((uint32_t)1U << 29)
+#define RCC_CSR_WWDGRSTF ((uint32_t)1U << 30)
+#define RCC_CSR_LPWRRSTF ((uint32_t)1U << 31)
 
 /* ------------------------------------------------------------- general-purpose timer (TIM2) */
 
@@ -236,12 +236,12 @@ typedef struct {
 } stm32_tim_t;
 
 #define STM32_TIM2_BASE 0x40000000U
-#define TIM_CR1_CEN (1U << 0)
-#define TIM_DIER_UIE (1U << 0)
-#define TIM_DIER_CC1IE (1U << 1)
-#define TIM_SR_UIF (1U << 0)
-#define TIM_SR_CC1IF (1U << 1)
-#define TIM_EGR_UG (1U << 0)
+#define TIM_CR1_CEN ((uint32_t)1U << 0)
+#define TIM_DIER_UIE ((uint32_t)1U << 0)
+#define TIM_DIER_CC1IE ((uint32_t)1U << 1)
+#define TIM_SR_UIF ((uint32_t)1U << 0)
+#define TIM_SR_CC1IF ((uint32_t)1U << 1)
+#define TIM_EGR_UG ((uint32_t)1U << 0)
 
 /* ------------------------------------------------------------- IWDG, GPIO, USART */
 
@@ -276,9 +276,9 @@ typedef struct {
     volatile uint32_t cr1;
 } stm32_usart_t;
 #define STM32_USART1_BASE 0x40011000U
-#define USART_SR_TXE (1U << 7)
-#define USART_CR1_TE (1U << 3)
-#define USART_CR1_UE (1U << 13)
+#define USART_SR_TXE ((uint32_t)1U << 7)
+#define USART_CR1_TE ((uint32_t)1U << 3)
+#define USART_CR1_UE ((uint32_t)1U << 13)
 
 /* ------------------------------------------------------------- Cortex-M4 core */
 

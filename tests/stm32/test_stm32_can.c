@@ -110,6 +110,13 @@ static void test_bit_timing_register_values(void **state)
 static void test_init_programs_the_controller(void **state)
 {
     (void)state;
+    /* The register block as RM0090 32.9.5 lays it out. */
+    assert_int_equal(offsetof(stm32_can_t, tx), 0x180U);
+    assert_int_equal(offsetof(stm32_can_t, rx), 0x1B0U);
+    assert_int_equal(offsetof(stm32_can_t, fmr), 0x200U);
+    assert_int_equal(offsetof(stm32_can_t, fa1r), 0x21CU);
+    assert_int_equal(offsetof(stm32_can_t, filter), 0x240U);
+    assert_int_equal(sizeof(stm32_can_t), 0x320U);
     const stm32_can_t *r = &g_na->regs;
     assert_int_equal(r->mcr, 0x00000040U);             /* ABOM; TXFP 0; out of init and sleep */
     assert_int_equal(r->msr & 3U, 0U);                 /* INAK, SLAK clear: normal mode */
