@@ -165,7 +165,7 @@ $(STACK_OUT)/small/pfe_mps2.elf: $(M4_OUT)/pfe_mps2.elf
 	$(M4_CC) $(call m4__objs,image,$(STACK_SRC_pfe_mps2) $(M4_HAL_IMAGE_SRCS)) $(M4_LDFLAGS_IMAGE) \
 	    -Wl,--defsym=__stack_size=512 -fstack-usage -fcallgraph-info=su -dumpdir $(@D)/pfe_mps2. -o $@
 
-stack-check: $(HARDEN_STAMP) $(foreach i,$(STACK_IMAGES),$(STACK_OUT)/$(i)/$(i).elf) \
+stack-check: $(HARDEN_STAMP) $(foreach i,$(STACK_IMAGES),$(STACK_OUT)/$(i)/$(i).elf) stm32-stack-check \
         $(STACK_OUT)/small/pfe_mps2.elf
 	@set -e; for i in pfe_mps2 pfe_ecu_mps2; do \
 	    $(STACK_CHECK) --elf $(M4_OUT)/$$i.elf --ci $(STACK_OUT)/$$i/*.ci --su $(STACK_OUT)/$$i/*.su; done

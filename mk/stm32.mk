@@ -62,8 +62,11 @@ $(STM32_OUT)/pfe_stm32_bench.elf: $(call m4__objs,image,$(STM32_BENCH_SRC)) $(ST
 # The image for a programmer: .hex (and the ELF) program only the sectors
 # they cover; the .bin spans the NVM sectors (filled 0xFF), so writing it
 # erases the saved fuel totals (docs/stm32_bench.md).
+# An empty .data keeps its RAM address as load address (ld does not move
+# an empty section): left out, or the .bin would reach up to 0x20000000.
 $(STM32_OUT)/%.bin: $(STM32_OUT)/%.elf
-	$(M4_CROSS)objcopy -O binary --gap-fill 0xFF $< $@
+	$(M4_CROSS)objcopy -O binary --gap-fill 0xFF \
+	    $$($(M4_SIZE) -A $< | awk '$$1 == ".data" && $$2 == 0 { print "-R .data" }') $< $@
 $(STM32_OUT)/%.hex: $(STM32_OUT)/%.elf
 	$(M4_CROSS)objcopy -O ihex $< $@
 
@@ -125,6 +128,19 @@ test-stm32-qemu: $(STM32_OUT)/pfe_stm32_qemu.elf $(HOST)/selfcheck $(M4_OUT)/pfe
 	    diff $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_stm32.txt; \
 	    diff $(STM32_OUT)/selfcheck_host.txt $(STM32_OUT)/selfcheck_mps2.txt; exit 1; fi
 
+# openocd and st-flash (stlink-tools) for the bench guide's commands.
+STM32_DEPS_STAMP := $(BUILD)/.deps-stm32
+$(STM32_DEPS_STAMP): scripts/deps.sh
+	@mkdir -p $(@D)
+	sh scripts/deps.sh $(STM32_BENCH_PACKAGES)
+	@touch $@
+STM32_BENCH_PACKAGES := openocd stlink-tools
+
+test-stm32-bench-guide: $(STM32_DEPS_STAMP) $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32.hex \
+        $(STM32_OUT)/pfe_stm32.bin $(HOST)/pfe_replay $(HOST)/pfe_record $(HOST)/run_report \
+        $(BUILD)/e2e/payload/drive.log
+	sh tests/stm32/bench_guide.sh $(STM32_OUT) $(HOST) $(BUILD)/e2e/payload/drive.log
+
 test-stm32: test-stm32-host test-stm32-qemu test-stm32-bench-guide
 
 # ---------------------------------------------------------------- bench (make bench)
@@ -145,3 +161,25 @@ stm32-bench: $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32_bench.elf $(BUILD
 	@$(STM32_QEMU) $(STM32_OUT)/pfe_stm32_bench.elf /dev/null --log $(BUILD)/e2e/payload/drive.log | \
 	    awk '/^m4:/ { print "bench: stm32_ecu_drive_tick_mean " $$5 " insn"; \
 	    print "bench: stm32_ecu_drive_tick_max " $$7 " insn"; ok = 1 } END { exit !ok }'
+
+# ---------------------------------------------------------------- worst-case stack (make stack-check)
+
+# The product image linked again with -fstack-usage -fcallgraph-info=su
+# (as mk/hardening.mk does for the mps2 images: the same bytes, or the
+# analysis is of something else), then scripts/stack_check.py: the deepest
+# thread path plus each exception level (the CAN and TIM2 interrupts all at
+# reset priority, so they cannot preempt each other), against __stack_size.
+STM32_STACK_OUT := $(BUILD)/stack/pfe_stm32
+.PHONY: stm32-stack-check
+$(STM32_STACK_OUT)/pfe_stm32.elf: $(STM32_OUT)/pfe_stm32.elf scripts/stack_check.py scripts/stack_indirect.txt
+	@rm -rf $(@D)
+	@mkdir -p $(@D)
+	$(M4_CC) $(call m4__objs,image,$(STM32_ECU_SRC)) $(STM32_LDFLAGS) \
+	    -fstack-usage -fcallgraph-info=su -dumpdir $(@D)/pfe_stm32. -o $@
+	@$(M4_CROSS)objcopy -O binary $@ $(@D)/analysed.bin
+	@$(M4_CROSS)objcopy -O binary $(STM32_OUT)/pfe_stm32.elf $(@D)/product.bin
+	@cmp -s $(@D)/analysed.bin $(@D)/product.bin || { echo "stack-check: the analysis link of" \
+	    "pfe_stm32 differs from $(STM32_OUT)/pfe_stm32.elf"; exit 1; }
+
+stm32-stack-check: $(STM32_STACK_OUT)/pfe_stm32.elf
+	$(STACK_CHECK) --elf $(STM32_OUT)/pfe_stm32.elf --ci $(STM32_STACK_OUT)/*.ci --su $(STM32_STACK_OUT)/*.su

@@ -97,6 +97,9 @@ int main(void)
     hal_stm32_clock_t clock;
     hal_stm32_clock_init(RCC, FLASH_R, &clock);
     const uint32_t cause = hal_stm32_reset_cause(RCC);
+    /* A debugger that halts the core (openocd, docs/stm32_bench.md) halts
+     * the watchdog and CAN1 too, instead of being reset under its feet. */
+    HAL_STM32_WR(STM32_DBGMCU_APB1_FZ, STM32_DBGMCU_APB1_FZ | DBG_IWDG_STOP | DBG_CAN1_STOP);
     hal_stm32_watchdog_start(IWDG);
 
     HAL_STM32_WR(RCC->apb1enr, RCC->apb1enr | RCC_APB1ENR_TIM2 | RCC_APB1ENR_CAN1);

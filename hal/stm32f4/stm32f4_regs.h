@@ -286,6 +286,12 @@ typedef struct {
 #define STM32_SCB_AIRCR (*(volatile uint32_t *)0xE000ED0CU)
 #define STM32_AIRCR_SYSRESETREQ 0x05FA0004U
 
+/* Debug freeze (RM0090 38.16.4): the watchdog and CAN1 stop while a
+ * debugger holds the core. */
+#define STM32_DBGMCU_APB1_FZ (*(volatile uint32_t *)0xE0042008U)
+#define DBG_IWDG_STOP ((uint32_t)1U << 12)
+#define DBG_CAN1_STOP ((uint32_t)1U << 25)
+
 /* Interrupt numbers (RM0090 table 61). */
 #define STM32_IRQ_TIM2 28U
 #define STM32_IRQ_CAN1_TX 19U
