@@ -22,7 +22,8 @@ STM32_LDSCRIPT := linker/stm32f405.ld
 STM32_HAL_SRC := hal/stm32f4/startup.c hal/stm32f4/hal_stm32_board.c \
     hal/stm32f4/hal_stm32_time.c
 STM32_ECU_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c $(STM32_HAL_SRC) hal/stm32f4/hal_stm32_tick.c \
-    hal/stm32f4/hal_stm32_can.c hal/stm32f4/hal_stm32_nvm.c hal/stm32f4/main_ecu.c
+    hal/stm32f4/hal_stm32_can.c hal/stm32f4/hal_stm32_nvm.c hal/stm32f4/hal_stm32_ecu.c \
+    hal/stm32f4/main_ecu.c
 # The bench: the mps2 ECU replay (hal/mps2/main_ecu.c, hal/replay) on this
 # board, TIM2 counting instructions under QEMU (hal/stm32f4/icount_tim2.c).
 STM32_BENCH_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c \
@@ -102,7 +103,12 @@ $(HOSTSAN)/test_stm32_board: tests/stm32/test_stm32_board.c hal/stm32f4/hal_stm3
 	@mkdir -p $(@D)
 	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(sort $(filter %.c,$^)) -lcmocka
 
-STM32_HOST_TESTS := test_stm32_can test_hal_stm32 test_stm32_nvm test_stm32_board
+$(HOSTSAN)/test_stm32_ecu: tests/stm32/test_stm32_ecu.c hal/stm32f4/hal_stm32_ecu.c hal/stm32f4/hal_stm32_nvm.c \
+        $(ECU_LOOP_SRC) $(FW_SRC) $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(sort $(filter %.c,$^)) -lcmocka
+
+STM32_HOST_TESTS := test_stm32_can test_hal_stm32 test_stm32_nvm test_stm32_board test_stm32_ecu
 
 test-stm32-host: $(addprefix $(HOSTSAN)/,$(STM32_HOST_TESTS))
 	@set -e; for t in $(STM32_HOST_TESTS); do echo "== host: $$t (register models)"; $(HOSTSAN)/$$t; done

@@ -7,7 +7,8 @@
  * Each pass: wait for the tick's deadline (TIM2 compare, WFI), run
  * hal_ecu_loop_step(), hand the controller's error state and the NVM's
  * health to the ECU (PFE_DeviceStatus), then feed the watchdog only if the
- * pass finished before the next deadline. A pass later than a whole tick
+ * pass finished before the next deadline (hal_stm32_ecu.h, tested on the
+ * host with the drivers on the register models). A pass later than a whole tick
  * counts the ticks lost (pfe_ecu_note_overrun()) and restarts the
  * deadlines from now, as sim_host/ecu_main.c does; ticks that stay late
  * stop feeding the watchdog, which then resets the module
@@ -25,6 +26,7 @@
 #include "hal/hal_ecu_loop.h"
 #include "hal/stm32f4/hal_stm32_board.h"
 #include "hal/stm32f4/hal_stm32_can.h"
+#include "hal/stm32f4/hal_stm32_ecu.h"
 #include "hal/stm32f4/hal_stm32_nvm.h"
 #include "hal/stm32f4/hal_stm32_time.h"
 #include "hal/stm32f4/startup.h"
@@ -44,7 +46,6 @@ extern uint32_t __nvm_sector2[];
 
 static hal_can_t s_can;
 static hal_time_t s_time;
-static pfe_ecu_t s_ecu;
 
 void CAN1_TX_IRQHandler(void);
 void CAN1_RX0_IRQHandler(void);
@@ -80,20 +81,11 @@ static void can_pins(void)
     HAL_STM32_WR(GPIOB->afr[1], (GPIOB->afr[1] & ~0xFFU) | 0x99U);
 }
 
-static void note_device_state(void)
-{
-    hal_stm32_can_state_t st;
-    hal_stm32_can_state(&s_can, &st);
-    const pfe_ecu_bus_state_t bus = {st.rx_overruns, st.bus_off_events, st.tx_error_counter,
-                                     st.rx_error_counter, st.error_warning, st.error_passive,
-                                     st.bus_off};
-    pfe_ecu_note_bus_state(&s_ecu, &bus);
-}
-
 int main(void)
 {
     static hal_nvm_t s_nvm;
     static hal_ecu_loop_t s_loop;
+    static pfe_ecu_t s_ecu;
     hal_stm32_clock_t clock;
     hal_stm32_clock_init(RCC, FLASH_R, &clock);
     const uint32_t cause = hal_stm32_reset_cause(RCC);
@@ -120,32 +112,14 @@ int main(void)
         hal_stm32_unhandled(0U);
     }
     pfe_ecu_note_reset_cause(&s_ecu, (pfe_reset_cause_t)cause);
-    uint32_t saves = s_nvm.saves;
-    uint32_t failures = s_nvm.failures;
+    hal_stm32_ecu_marks_t marks;
+    hal_stm32_ecu_marks_init(&marks, &s_nvm);
     for (;;) {
         (void)hal_time_wait_until_us(&s_time, deadline);
         (void)hal_ecu_loop_step(&s_loop, deadline);
-        note_device_state();
-        if (s_nvm.failures != failures) {
-            s_ecu.nvm_failing = true;
-        } else if (s_nvm.saves != saves) {
-            s_ecu.nvm_failing = false;
-        } else {
-            /* no save this tick */
-        }
-        saves = s_nvm.saves;
-        failures = s_nvm.failures;
-        s_ecu.count.nvm_write_failures = s_nvm.failures;
-        deadline += PFE_ECU_TICK_US;
-        const uint64_t t = hal_stm32_now_us();
-        if (t <= deadline) {
+        hal_stm32_ecu_report(&s_ecu, &s_can, &s_nvm, &marks);
+        if (hal_stm32_ecu_pace(&s_ecu, &deadline, hal_stm32_now_us())) {
             hal_stm32_watchdog_feed(IWDG);
-        } else if (t > (deadline + PFE_ECU_TICK_US)) {
-            const uint64_t lost = (t - deadline) / PFE_ECU_TICK_US;
-            pfe_ecu_note_overrun(&s_ecu, (lost > UINT32_MAX) ? UINT32_MAX : (uint32_t)lost);
-            deadline += lost * PFE_ECU_TICK_US;
-        } else {
-            /* late by less than a tick: no feed, the next deadline stands */
         }
     }
 }
