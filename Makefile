@@ -185,7 +185,7 @@ $(M4_OUT)/test_bad_image_float.elf: $(M4_OUT)/obj/image/tests/m4/bad_image_float
 	$(M4_CC) $(filter %.o,$^) $(M4_LDFLAGS_IMAGE) -o $@
 
 check-image: $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf $(M4_OUT)/pfe_bench.elf \
-        $(M4_OUT)/test_bad_image_float.elf
+        $(M4_OUT)/test_bad_image_float.elf stm32-check-image
 	$(M4_CHECK) $(FIRMWARE_ELF)
 	$(M4_CHECK) $(M4_OUT)/pfe_ecu_mps2.elf
 	$(M4_CHECK) $(M4_OUT)/pfe_bench.elf

@@ -74,6 +74,16 @@ $(STM32_OUT)/%.hex: $(STM32_OUT)/%.elf
 stm32: $(DEPS_STAMP) $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32.bin $(STM32_OUT)/pfe_stm32.hex
 	@$(M4_SIZE) $(STM32_OUT)/pfe_stm32.elf
 
+# Image checks (make check-image): no heap, no floating-point helpers
+# (scripts/check_image.sh), and no FPU instruction at all: the FPU stays off,
+# so one would fault.
+.PHONY: stm32-check-image
+stm32-check-image: $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32_qemu.elf $(STM32_OUT)/pfe_stm32_bench.elf
+	@set -e; for e in $^; do $(M4_CHECK) $$e; \
+	    if $(M4_OBJDUMP) -d $$e | grep -Eq '\s(v[a-z0-9]+(\.[a-z0-9]+)*)\s+(s[0-9]|d[0-9]|\{[sd])'; then \
+	        echo "stm32-check-image: $$e has FPU instructions"; exit 1; fi; \
+	    echo "stm32-check-image: $$e: no heap, no floating point, no FPU instruction"; done
+
 # ---------------------------------------------------------------- host tests (register models)
 
 STM32_SAN_CFLAGS := $(SAN_CFLAGS) -DHAL_STM32_REG_MODEL -I. -Ifirmware

@@ -30,7 +30,9 @@
 
 #include "hal/stm32f4/stm32f4_regs.h"
 
-#define HAL_STM32_HSE_TIMEOUT 200000U     /* status polls, ~20 ms at 16 MHz */
+/* Status polls: 40 to 80 ms at the 16 MHz HSI (3 to 6 cycles a poll), far
+ * above a crystal's few milliseconds of start-up. */
+#define HAL_STM32_HSE_TIMEOUT 200000U
 #define HAL_STM32_PLL_TIMEOUT 200000U
 #define HAL_STM32_APB1_HZ 42000000U
 #define HAL_STM32_APB1_TIMER_HZ 84000000U
