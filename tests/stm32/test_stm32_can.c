@@ -214,6 +214,33 @@ static void test_ecu_filters_are_hardware_banks(void **state)
     expect_rx_empty(&g_a);
 }
 
+/* A filter without the EFF flag in its mask takes both formats: no bank
+ * can say that, so its bank passes everything and the interrupt decides. */
+static void test_filter_for_both_frame_formats(void **state)
+{
+    (void)state;
+    assert_int_equal(hal_can_add_filter(&g_a, 0x123U, 0x7FFU), 0);
+    assert_int_equal(g_na->regs.fa1r, 1U);
+    assert_int_equal(g_na->regs.filter[0].fr2, 0U);
+    const uint8_t d[8] = {0x55U, 0, 0, 0, 0, 0, 0, 0};
+    bxcan_bus_inject(0x124U, 8U, d);
+    bxcan_bus_inject(EFF | 0x00000123U, 8U, d);
+    bxcan_bus_inject(0x123U, 8U, d);
+    bxcan_bus_inject(EFF | 0x18FEF123U, 8U, d); /* low 11 bits 0x123 too */
+    const uint32_t want[3] = {EFF | 0x00000123U, 0x123U, EFF | 0x18FEF123U};
+    for (uint32_t k = 0U; k < 3U; k++) {
+        hal_can_rx_t rx;
+        memset(&rx, 0xA5, sizeof rx);
+        assert_int_equal(hal_can_receive(&g_a, &rx), 0);
+        assert_int_equal(rx.frame.id, want[k]);
+    }
+    expect_rx_empty(&g_a);
+    /* An exact filter beside it keeps its own bank. */
+    assert_int_equal(hal_can_add_filter(&g_a, EFF | 0x18FEF100U, EFF | 0x03FFFF00U), 1);
+    assert_int_equal(g_na->regs.fa1r, 3U);
+    assert_int_equal(g_na->regs.filter[1].fr1, 0xC7F78804U);
+}
+
 /* ------------------------------------------------------------------ transmit */
 
 static uint32_t std_tir(uint32_t id)
@@ -415,6 +442,7 @@ int main(void)
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(test_sleep_and_wake, setup, teardown),
         cmocka_unit_test_setup_teardown(test_ecu_filters_are_hardware_banks, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_filter_for_both_frame_formats, setup, teardown),
         cmocka_unit_test_setup_teardown(test_mailboxes_in_identifier_order_frames_in_send_order,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(test_transmit_queue_is_bounded, setup, teardown),
