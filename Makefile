@@ -165,6 +165,7 @@ include mk/truck.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
+include mk/stm32.mk
 
 GEN := $(BUILD)/gen
 .SECONDARY: $(GEN)/road_hilly.c
@@ -195,7 +196,7 @@ $(M4_OUT)/test_bad_image_float.elf: $(M4_OUT)/obj/image/tests/m4/bad_image_float
 	$(M4_CC) $(filter %.o,$^) $(M4_LDFLAGS_IMAGE) -o $@
 
 check-image: $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf $(M4_OUT)/pfe_bench.elf \
-        $(M4_OUT)/test_bad_image_float.elf
+        $(M4_OUT)/test_bad_image_float.elf stm32-check-image
 	$(M4_CHECK) $(FIRMWARE_ELF)
 	$(M4_CHECK) $(M4_OUT)/pfe_ecu_mps2.elf
 	$(M4_CHECK) $(M4_OUT)/pfe_bench.elf
@@ -300,7 +301,7 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
       test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
       thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check test-truck-cal \
-      test-foreign-trucks check-replay-calib
+      test-foreign-trucks check-replay-calib test-stm32
 
 test-bench-check:
 	@sh tests/bench/bench_check_test.sh
@@ -320,7 +321,7 @@ bench:
 	@sh scripts/bench_check.sh tests/bench/targets.txt $(BUILD)/bench.out
 
 bench-figures: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf \
-        $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench foreign-bench
+        $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench foreign-bench stm32-bench
 	@$(M4_RUN) $(M4_OUT)/pfe_bench.elf
 	@# The ECU's tick over a whole drive (61.6 s, 6263 ticks) in the image that
 	@# replays it: receive, decode, estimate, encode, send, and the prediction's

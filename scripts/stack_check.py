@@ -24,7 +24,9 @@ inline assembly such as hal_mps2_default_handler's branch to
 report_exception). Indirect calls: every one in the .ci must match an entry
 of the --indirect file, which lists its possible targets; every register
 branch (blx rN, bx rN other than lr) in the disassembly must belong to a
-function with such a call; every function whose address is stored in the
+function with such a call (a switch's table branch, adr rX then ldr pc,
+[rX, rY, lsl #2] with the table right after it and every entry inside the
+same function, is a jump within the function, not a call); every function whose address is stored in the
 image (outside the vector table) must be listed as a target. Anything else,
 and any cycle (recursion), is refused: the bound would not be one.
 
@@ -175,6 +177,8 @@ def disassemble(elf, funcs):
     pool_words = []
     cur = None
     ri = 0
+    prev = None      # (function, address, op, operands) of the last instruction
+    table = None     # the switch table being read: function, its bounds, entries
     for line in run([OBJDUMP, "-d", "--no-show-raw-insn", elf]).split("\n"):
         m = INSN.match(line)
         if not m:
@@ -187,11 +191,25 @@ def disassemble(elf, funcs):
         cur = ranges[ri][2] if (ri < len(ranges) and ranges[ri][0] <= addr) else None
         if op == ".word":
             try:
-                pool_words.append(int(rest.split()[0], 16))
+                w = int(rest.split()[0], 16)
             except (ValueError, IndexError):
-                pass
+                continue
+            pool_words.append(w)
+            if table is not None and cur == table["func"]:
+                # A case of the switch: a Thumb address inside the function.
+                if (w & 1) and table["lo"] <= (w & ~1) < table["hi"]:
+                    table["entries"] += 1
+                else:
+                    info[cur]["regbranch"].append("switch table entry 0x%x at 0x%x leaves %s"
+                                                  % (w, addr, cur))
             continue
+        if table is not None:
+            if table["entries"] == 0:
+                info[table["func"]]["regbranch"].append("switch table without entries at 0x%x"
+                                                        % table["at"])
+            table = None
         if cur is None:
+            prev = None
             continue
         fi = info[cur]
         base = op.split(".")[0]
@@ -230,7 +248,20 @@ def disassemble(elf, funcs):
         elif base == "mov" and re.match(r"pc,", rest):
             fi["regbranch"].append("%s %s at 0x%x" % (op, rest, addr))
         elif base == "ldr" and re.match(r"pc,", rest) and not re.match(r"pc,\s*\[sp\]", rest):
-            fi["regbranch"].append("%s %s at 0x%x" % (op, rest, addr))
+            # GCC's switch: adr rX, TABLE; ldr.w pc, [rX, rY, lsl #2]; TABLE
+            # right after, every entry an address in this function: a jump
+            # within it, not a call.
+            jt = re.match(r"pc,\s*\[(r\d+),\s*r\d+,\s*lsl\s*#2\]$", rest)
+            adr = None
+            if jt and prev is not None and prev[0] == cur and prev[2].split(".")[0] == "add":
+                adr = re.match(r"(r\d+),\s*pc,\s*#(\d+)$", prev[3])
+            if (adr and adr.group(1) == jt.group(1) and
+                    ((prev[1] + 4) & ~3) + int(adr.group(2)) == addr + 4):
+                lo, size = funcs[cur]
+                table = {"func": cur, "lo": lo, "hi": lo + size, "entries": 0, "at": addr}
+            else:
+                fi["regbranch"].append("%s %s at 0x%x" % (op, rest, addr))
+        prev = (cur, addr, op, rest)
     return info, pool_words
 
 
