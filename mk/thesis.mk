@@ -19,8 +19,10 @@
 #                   step 0.1 s of time), their ratio, which must reach 0.9 N;
 #                   and the host time of 12 km of the object model (median
 #                   of 21 runs)
-#   thesis-report   the tables 5.1 to 5.3 and 5.5 analogues on the three
-#                   roads with N = 5, the same without drag reduction (the
+#   thesis-report   the tables 5.1 to 5.5 analogues on the three roads with
+#                   N = 5, beside the thesis's values (5.4: both fuel models
+#                   fed the node model's mean speeds), the same without
+#                   drag reduction (the
 #                   cause of the uphill difference), and the route choice on
 #                   the bundled routes: ridge, detour and rolling; ridge
 #                   against the long bypass (guaranteed, exit 0); uphill

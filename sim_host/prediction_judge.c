@@ -8,12 +8,12 @@
 
 #include "../firmware/pfe_can.h"
 #include "../firmware/pfe_codec.h"
+#include "bus_ref.h"
 
 #define TICK_S 0.01                     /* the module's tick (pfe_ecu.h) */
 #define SPEED_GAP_MAX_US 1000000U       /* longer without CCVS1: no distance counted (as run_report) */
 #define CANDIDATE_WINDOW_S 2.0          /* starts this long before a frame are candidates */
 #define PREDICTION_STEP_L 0.01          /* PFE_FuelPrediction's resolution */
-#define PLATOON_FUEL_STEP_L 0.001       /* PFE_PlatoonFuel's */
 #define NONE ((double)NAN)
 #define ENDLESS ((double)INFINITY)
 
@@ -168,7 +168,8 @@ static void place(const preview_t *pv, size_t n_pv, const pos_t *pos, size_t n_p
     }
 }
 
-int prediction_judge_run(const capture_t *cap, uint8_t module_sa, pj_result_t *out)
+int prediction_judge_run(const capture_t *cap, uint8_t module_sa, unsigned n_vehicles, unsigned position,
+                         uint32_t gap_mm, pj_result_t *out)
 {
     memset(out, 0, sizeof *out);
     vec_t pos = {NULL, 0U, 0U, sizeof(pos_t)};
@@ -176,6 +177,11 @@ int prediction_judge_run(const capture_t *cap, uint8_t module_sa, pj_result_t *o
     vec_t pvs = {NULL, 0U, 0U, sizeof(preview_t)};
     static pfe_preview_t buf;
     pfe_preview_init(&buf);
+    static bus_ref_t ref;
+    if (bus_ref_init(&ref, n_vehicles, position, gap_mm) != 0) {
+        out->why_not = "bad platoon for the reference";
+        return 0;
+    }
     bool have_t0 = false, have_speed = false;
     uint64_t t0 = 0U, last_speed_us = 0U;
     double speed_m_s = 0.0, x_m = 0.0, header_s = NONE, header_x = 0.0;
@@ -195,6 +201,15 @@ int prediction_judge_run(const capture_t *cap, uint8_t module_sa, pj_result_t *o
         }
         const double t_s = (rec->t_us >= t0) ? ((double)(rec->t_us - t0) / 1e6) : 0.0;
         const uint32_t pgn = pfe_j1939_pgn(rec->f.id);
+        if (!from_module) {
+            /* the reference's platoon fuel used at each of its ticks up to this input */
+            while ((rc == 0) && bus_ref_due(&ref, rec->t_us)) {
+                const uint64_t tt = bus_ref_tick(&ref);
+                const fuel_t f = {(tt >= t0) ? ((double)(tt - t0) / 1e6) : 0.0, bus_ref_platoon_used(&ref)};
+                rc = push(&fuel, &f);
+            }
+            bus_ref_input(&ref, &rec->f, rec->t_us);
+        }
         if (!from_module && (pgn == PFE_PGN_CCVS1)) {
             pfe_msg_ccvs1_t m;
             const bool ok = (pfe_codec_decode_ccvs1(&rec->f, &m) == 0) && (m.speed_mm_s.state == PFE_SIG_VALID);
@@ -217,12 +232,6 @@ int prediction_judge_run(const capture_t *cap, uint8_t module_sa, pj_result_t *o
                 rc = push(&pvs, &v);
             } else {
                 /* a data frame of a preview in progress, or one the module refuses too */
-            }
-        } else if (from_module && (pgn == PFE_PGN_PLATOON_FUEL)) {
-            pfe_msg_platoon_fuel_t m;
-            if ((pfe_codec_decode_platoon_fuel(&rec->f, &m) == 0) && (m.fuel_used_ul.state == PFE_SIG_VALID)) {
-                const fuel_t f = {t_s, (double)m.fuel_used_ul.value / 1e6};
-                rc = push(&fuel, &f);
             }
         } else if (from_module && (pgn == PFE_PGN_FUEL_PREDICTION)) {
             pfe_msg_fuel_prediction_t m;
@@ -275,12 +284,12 @@ int prediction_judge_run(const capture_t *cap, uint8_t module_sa, pj_result_t *o
                 const double a = fuel_at(ff, fuel.n, row.start_s);
                 const double b = fuel_at(ff, fuel.n, row.end_s);
                 if (isnan(a) || isnan(b)) {
-                    row.complete = false; /* no PFE_PlatoonFuel across the stretch */
+                    row.complete = false; /* no reference across the stretch */
                     out->incomplete++;
                 } else {
                     row.realized_l = b - a;
                     row.driven_time_s = row.end_s - row.start_s;
-                    const double slack = (PREDICTION_STEP_L / 2.0) + PLATOON_FUEL_STEP_L;
+                    const double slack = PREDICTION_STEP_L / 2.0;
                     row.within = (row.realized_l >= row.lower_l - slack) && (row.realized_l <= row.upper_l + slack);
                     out->complete++;
                     out->outside += row.within ? 0U : 1U;
@@ -363,7 +372,7 @@ bool prediction_judge_value(const pj_result_t *r, int k, double *v, const char *
 void prediction_judge_print(const pj_result_t *r)
 {
     printf("\n  prediction (PFE_FuelPrediction) against the platoon fuel used over its horizon "
-           "(PFE_PlatoonFuel):\n");
+           "(the reference's):\n");
     printf("    %zu predictions over %zu previews: %zu horizons complete, %zu end after the capture",
            r->n_rows, r->previews, r->complete, r->incomplete);
     if (r->unmatched > 0U) {
@@ -444,7 +453,7 @@ void prediction_judge_plot(FILE *gp, const char *csv_path)
                 "set xlabel 'time the prediction starts from (s)'\n"
                 "plot pcsv skip 1 using 2:5:6 with filledcurves lc rgb '#c6dbef' title 'predicted bounds (PFE_FuelPrediction)', \\\n"
                 "     pcsv skip 1 using 2:4 with lines lw 2.0 lc rgb '#1f77b4' title 'predicted platoon fuel', \\\n"
-                "     pcsv skip 1 using 2:7 with points pt 7 ps 0.6 lc rgb '#d62728' title 'realized over the same stretch (PFE_PlatoonFuel)'\n"
+                "     pcsv skip 1 using 2:7 with points pt 7 ps 0.6 lc rgb '#d62728' title 'realized over the same stretch (reference)'\n"
                 "set xlabel 'time (s)'\n");
 }
 

@@ -8,9 +8,9 @@
  * grade preview it was computed over, n x spacing past the point the
  * vehicle was at when the preview's header was sent. The capture holds the
  * previews (PFE_GradePreview, read with the module's own pfe_preview_push,
- * so a preview counts as complete exactly when the module's does), the
+ * so a preview counts as complete exactly when the module's does) and the
  * speed (CCVS1: the distance driven, the last speed held until the next
- * frame as the module holds it) and the module's PFE_PlatoonFuel total.
+ * frame as the module holds it).
  *
  * When a prediction started is not in the capture. The module starts one
  * at the first tick after a preview is complete and then every
@@ -23,12 +23,17 @@
  * only to within about 0.5 s (PredictedTime is not judged, only reported).
  *
  * A horizon is complete when the capture's speed reaches its end. For each
- * complete one the realized fuel is the PFE_PlatoonFuel total (linear
- * between frames) at the end less at the start, and it must lie within
- * [lower, upper], widened by the signals' resolution: half of
- * PFE_FuelPrediction's 0.01 L step and PFE_PlatoonFuel's 0.001 L.
- * The realized fuel is the module's own platoon estimate; run_report judges
- * that one against the double-precision reference (platoon_fuel_error_pct).
+ * complete one the realized fuel is the platoon's fuel used over it by the
+ * reference (sim_host/bus_ref.h: the double-precision estimator on the
+ * captured speed and grade, linear between its ticks): what the platoon
+ * burned on the road it drove, whatever the module's own ticks did. It
+ * must lie within [lower, upper], widened by half of PFE_FuelPrediction's
+ * 0.01 L step.
+ *
+ * The module counts the distance since a preview's header tick by tick
+ * (10 ms of its speed a tick): a module that loses ticks starts its
+ * predictions from behind where the vehicle is, and over-predicts by the
+ * road it thinks is still ahead; the error shows it.
  *
  * Memory: arrays grown with realloc, freed by prediction_judge_free.
  */
@@ -90,10 +95,13 @@ typedef struct {
 } pj_result_t;
 
 /*
- * Judges the predictions from module_sa in cap. Returns 0 (even when
+ * Judges the predictions from module_sa in cap; the reference starts with
+ * the platoon n_vehicles, position, gap_mm until a PFE_PlatoonConfig says
+ * otherwise, as run_report's (bus_ref_init). Returns 0 (even when
  * nothing could be judged: then why_not says why), -1 out of memory.
  */
-int prediction_judge_run(const capture_t *cap, uint8_t module_sa, pj_result_t *out);
+int prediction_judge_run(const capture_t *cap, uint8_t module_sa, unsigned n_vehicles, unsigned position,
+                         uint32_t gap_mm, pj_result_t *out);
 
 /* Quantity k (PJ_Q_*): returns true with *v, or false with *why. */
 bool prediction_judge_value(const pj_result_t *r, int k, double *v, const char **why);

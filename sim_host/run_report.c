@@ -1262,7 +1262,8 @@ int main(int argc, char **argv)
     set_quantities(&a, &cap);
     print_summary(&o, &cap, &a, &run);
     static pj_result_t pj;
-    if (prediction_judge_run(&cap, (uint8_t)o.module_sa, &pj) != 0) {
+    if (prediction_judge_run(&cap, (uint8_t)o.module_sa, (unsigned)o.vehicles, (unsigned)o.position,
+                             (uint32_t)lround(o.gap_m * 1000.0), &pj) != 0) {
         fprintf(stderr, "run_report: out of memory\n");
         rc = -1;
     }
