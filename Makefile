@@ -149,6 +149,7 @@ include mk/sensitivity.mk
 include mk/replay.mk
 include mk/run.mk
 include mk/thesis.mk
+include mk/roads.mk
 include mk/hardening.mk
 include mk/fuzz.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
@@ -288,7 +289,8 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
       test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
-      thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check
+      thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check \
+      test-road-import
 
 test-bench-check:
 	@sh tests/bench/bench_check_test.sh
