@@ -13,6 +13,7 @@
 #define TICK_S 0.01                     /* the module's tick (pfe_ecu.h) */
 #define SPEED_GAP_MAX_US 1000000U       /* longer without CCVS1: no distance counted (as run_report) */
 #define CANDIDATE_WINDOW_S 2.0          /* starts this long before a frame are candidates */
+#define MIN_LATENCY_S 0.04              /* a prediction's three runs need a set-up call each: 4 ticks */
 #define PREDICTION_STEP_L 0.01          /* PFE_FuelPrediction's resolution */
 #define NONE ((double)NAN)
 #define ENDLESS ((double)INFINITY)
@@ -135,6 +136,7 @@ static int add_row(pj_result_t *r, const pj_row_t *row)
 /* The stretch of one prediction: the candidate start that fits PredictedTime best. */
 static void place(const preview_t *pv, size_t n_pv, const pos_t *pos, size_t n_pos, pj_row_t *row)
 {
+    const double last_s = (n_pos > 0U) ? pos[n_pos - 1U].t_s : 0.0;
     double best = ENDLESS;
     row->complete = false;
     row->start_s = NONE;
@@ -148,14 +150,17 @@ static void place(const preview_t *pv, size_t n_pv, const pos_t *pos, size_t n_p
         const double first = pv[p].complete_s + TICK_S;
         for (double k = fmax(0.0, floor((row->frame_s - CANDIDATE_WINDOW_S - first))); ; k += 1.0) {
             const double s = first + k;
-            if ((s >= row->frame_s) || (s >= until)) {
+            if ((s > row->frame_s - MIN_LATENCY_S) || (s >= until)) {
                 break;
             }
             if (s < row->frame_s - CANDIDATE_WINDOW_S) {
                 continue;
             }
             const double end = t_reaching(pos, n_pos, pv[p].end_m);
-            const double fit = isnan(end) ? ENDLESS : fabs((end - s) - row->predicted_time_s);
+            /* a horizon the capture does not finish fits when it would take at least as long
+             * as the capture has left */
+            const double fit = isnan(end) ? fmax(0.0, (last_s - s) - row->predicted_time_s)
+                                          : fabs((end - s) - row->predicted_time_s);
             if (!any || (fit < best)) {
                 any = true;
                 best = fit;

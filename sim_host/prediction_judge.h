@@ -17,10 +17,13 @@
  * PFE_ECU_PREDICT_PERIOD_US (1 s) until the next preview, and sends the
  * latest result once a second. For each new PFE_FuelPrediction value the
  * judge takes the candidate starts (completion + 10 ms + k s) of the last
- * two previews within the 2 s before the frame, and of those the one from
- * which the vehicle's actual time to the horizon's end is closest to
- * PredictedTime; candidates are 1 s apart, so the time error is measured
- * only to within about 0.5 s (PredictedTime is not judged, only reported).
+ * two previews within the 2 s before the frame and at least 40 ms before it
+ * (a prediction's three runs need a set-up call each, pfe_predict.h), and
+ * of those the one from which the vehicle's actual time to the horizon's
+ * end is closest to PredictedTime; a horizon that ends after the capture
+ * fits when PredictedTime is at least the time the capture has left.
+ * Candidates are 1 s apart, so the time error is measured only to within
+ * about 0.5 s (PredictedTime is not judged, only reported).
  *
  * A horizon is complete when the capture's speed reaches its end. For each
  * complete one the realized fuel is the platoon's fuel used over it by the
