@@ -159,6 +159,7 @@ include mk/sensitivity.mk
 include mk/replay.mk
 include mk/run.mk
 include mk/thesis.mk
+include mk/roads.mk
 include mk/hardening.mk
 include mk/fuzz.mk
 include mk/truck.mk
@@ -301,7 +302,7 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
       test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
       thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check test-truck-cal \
-      test-foreign-trucks check-replay-calib test-stm32
+      test-foreign-trucks check-replay-calib test-stm32 test-road-import
 
 test-bench-check:
 	@sh tests/bench/bench_check_test.sh

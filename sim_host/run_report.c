@@ -33,7 +33,10 @@
  * module_total_l, ref_total_l; NA where there is no value), PREFIX.metrics
  * (every quantity below, "name value"), PREFIX.gp and, through gnuplot,
  * PREFIX.png (speed, grade, fuel rate and fuel used, module against
- * reference). PREFIX defaults to build/run/report; folders are created.
+ * reference; and the module's predictions with their bounds against the
+ * fuel used over each one's horizon, sim_host/prediction_judge.h, whose
+ * rows are in PREFIX.prediction.csv). PREFIX defaults to build/run/report;
+ * folders are created.
  *
  * --expect FILE: expected values, one per line, '#' starts a comment:
  *     NAME VALUE TOL      |measured - VALUE| <= TOL; TOL absolute, or with
@@ -66,6 +69,7 @@
 #include "../firmware/pfe_codec.h"
 #include "bus_ref.h"
 #include "capture.h"
+#include "prediction_judge.h"
 #include "truck_cal.h"
 
 extern char **environ;
@@ -84,6 +88,7 @@ enum {
     Q_TOTAL_ERR, Q_PTOTAL, Q_REF_PTOTAL, Q_PTOTAL_ERR, Q_OVERRUNS, Q_RX_DROPPED, Q_TX_DROPPED,
     Q_NORMAL_PCT, Q_CAPTURE_DROPPED, Q_INPUT_EVENTS, Q_DISTURBED_PCT, Q_COUNT
 };
+#define Q_ALL (Q_COUNT + PJ_Q_COUNT) /* the prediction's after them (prediction_judge.h) */
 
 typedef struct {
     const char *name;
@@ -93,7 +98,7 @@ typedef struct {
     const char *why_not;    /* when not measured */
 } quantity_t;
 
-static quantity_t g_q[Q_COUNT] = {
+static quantity_t g_q[Q_ALL] = {
     [Q_DURATION] = {"duration_s", "first to last input frame, s", 0.0, false, NULL},
     [Q_DISTANCE] = {"distance_km", "distance driven (CCVS1 speed over time), km", 0.0, false, NULL},
     [Q_MEAN_SPEED] = {"mean_speed_kmh", "distance / duration, km/h", 0.0, false, NULL},
@@ -136,6 +141,7 @@ static quantity_t g_q[Q_COUNT] = {
     [Q_DISTURBED_PCT] = {"rate_frames_disturbed_pct",
                          "LFE1 and PFE_PlatoonFuel not judged: 2 s after an input timing event "
                          "or 5 lost module ticks, %", 0.0, false, NULL},
+    PREDICTION_JUDGE_QUANTITIES(Q_COUNT),
 };
 
 static void set_q(int k, double v)
@@ -152,7 +158,7 @@ static void unset_q(int k, const char *why)
 
 static int find_q(const char *name)
 {
-    for (int k = 0; k < Q_COUNT; k++) {
+    for (int k = 0; k < Q_ALL; k++) {
         if (strcmp(g_q[k].name, name) == 0) {
             return k;
         }
@@ -178,7 +184,7 @@ static void usage(FILE *f)
             "                  [--out PREFIX] [--no-plot] [--gnuplot PROG] [--title TEXT]\n"
             "                  [--expect FILE] [--junit FILE] [--calib FILE]\n"
             "quantities for --expect:\n");
-    for (int k = 0; k < Q_COUNT; k++) {
+    for (int k = 0; k < Q_ALL; k++) {
         fprintf(f, "  %-28s %s\n", g_q[k].name, g_q[k].what);
     }
 }
@@ -553,7 +559,7 @@ static void gp_quoted(FILE *f, const char *s)
 }
 
 static int write_plot_script(const char *gp_path, const char *csv_path, const char *png_path,
-                             const char *title)
+                             const char *title, const char *prediction_csv)
 {
     FILE *f = fopen(gp_path, "w");
     if (f == NULL) {
@@ -561,11 +567,12 @@ static int write_plot_script(const char *gp_path, const char *csv_path, const ch
         return -1;
     }
     fprintf(f, "# Written by run_report: gnuplot %s\n", gp_path);
-    fprintf(f, "set terminal pngcairo noenhanced size 1100,1400 font 'sans,10'\nset output ");
+    fprintf(f, "set terminal pngcairo noenhanced size 1100,%d font 'sans,10'\nset output ",
+            (prediction_csv != NULL) ? 1750 : 1400);
     gp_quoted(f, png_path);
     fprintf(f, "\nset datafile separator ','\nset datafile missing 'NA'\n");
     fprintf(f, "set grid\nset key top right opaque box\nset lmargin 12\nset xlabel 'time (s)'\n");
-    fprintf(f, "set multiplot layout 4,1 title ");
+    fprintf(f, "set multiplot layout %d,1 title ", (prediction_csv != NULL) ? 5 : 4);
     gp_quoted(f, title);
     fprintf(f, " font 'sans,12'\ncsv = ");
     gp_quoted(f, csv_path);
@@ -579,8 +586,11 @@ static int write_plot_script(const char *gp_path, const char *csv_path, const ch
                "     csv skip 1 using 1:5 with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference (double precision)'\n"
                "set ylabel 'fuel used (L)'\n"
                "plot csv skip 1 using 1:6 with steps lw 2.5 lc rgb '#d62728' title 'module (HRLFC total)', \\\n"
-               "     csv skip 1 using 1:7 with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference'\n"
-               "unset multiplot\n");
+               "     csv skip 1 using 1:7 with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference'\n");
+    if (prediction_csv != NULL) {
+        prediction_judge_plot(f, prediction_csv);
+    }
+    fprintf(f, "unset multiplot\n");
     return close_out(f, gp_path);
 }
 
@@ -1268,6 +1278,27 @@ int main(int argc, char **argv)
     int rc = close_out(csv, csv_path);
     set_quantities(&a, &cap);
     print_summary(&o, &cap, &a, &run);
+    static pj_result_t pj;
+    if (prediction_judge_run(&cap, (uint8_t)o.module_sa, (unsigned)o.vehicles, (unsigned)o.position,
+                             (uint32_t)lround(o.gap_m * 1000.0), &pj) != 0) {
+        fprintf(stderr, "run_report: out of memory\n");
+        rc = -1;
+    }
+    for (int k = 0; k < PJ_Q_COUNT; k++) {
+        double v;
+        const char *why;
+        if (prediction_judge_value(&pj, k, &v, &why)) {
+            set_q(Q_COUNT + k, v);
+        } else {
+            unset_q(Q_COUNT + k, why);
+        }
+    }
+    prediction_judge_print(&pj);
+    char pj_path[PATH_MAX_LEN];
+    snprintf(pj_path, sizeof pj_path, "%s.prediction.csv", o.prefix);
+    rc |= prediction_judge_write_csv(&pj, pj_path);
+    const bool pj_plot = pj.n_rows > 0U;
+    prediction_judge_free(&pj);
     capture_free(&cap);
     free(run.ticks);
     free(run.states);
@@ -1276,7 +1307,7 @@ int main(int argc, char **argv)
     if (mf == NULL) {
         return 2;
     }
-    for (int k = 0; k < Q_COUNT; k++) {
+    for (int k = 0; k < Q_ALL; k++) {
         if (g_q[k].measured) {
             fprintf(mf, "%s %.6g\n", g_q[k].name, g_q[k].value);
         } else {
@@ -1284,7 +1315,7 @@ int main(int argc, char **argv)
         }
     }
     rc |= close_out(mf, m_path);
-    printf("\n  CSV:     %s\n  metrics: %s\n", csv_path, m_path);
+    printf("\n  CSV:     %s\n  metrics: %s\n  predictions: %s\n", csv_path, m_path, pj_path);
     if (o.plot && (a.csv_rows == 0U)) {
         printf("  plot:    none, no LFE1 frame from the module to plot\n");
     } else if (o.plot) {
@@ -1295,7 +1326,7 @@ int main(int argc, char **argv)
         snprintf(title, sizeof title, "%s: %.2f km, %.0f s; module (0x%02lX) against the reference",
                  (o.title != NULL) ? o.title : ((base != NULL) ? base + 1 : o.capture),
                  g_q[Q_DISTANCE].value, g_q[Q_DURATION].value, o.module_sa);
-        if ((write_plot_script(gp_path, csv_path, png_path, title) != 0) ||
+        if ((write_plot_script(gp_path, csv_path, png_path, title, pj_plot ? pj_path : NULL) != 0) ||
             (run_gnuplot(o.gnuplot, gp_path) != 0)) {
             rc = -1;
         } else {
