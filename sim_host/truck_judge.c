@@ -189,8 +189,23 @@ static counters_t last_status(const record_t *rec, uint8_t module_sa)
     return c;
 }
 
-/* Module frames of pgn sent while another node's were on the bus: within
- * window_us after one of theirs. */
+/* Whether another node's LFE1 or HRLFC carries a value: a node that sends
+ * the PGN with it "not available" (a cab controller) reports no fuel, and
+ * the module does not stay off the PGN for it (can_dbc/pfe.dbc). */
+static bool carries_value(const rec_t *x)
+{
+    if (x->pgn == PFE_PGN_LFE1) {
+        pfe_msg_lfe1_t m;
+        return (pfe_codec_decode_lfe1(&x->f, &m) == PFE_OK) &&
+               (m.fuel_rate_nl_s.state != PFE_SIG_NOT_AVAILABLE);
+    }
+    pfe_msg_hrlfc_t h;
+    return (pfe_codec_decode_hrlfc(&x->f, &h) == PFE_OK) &&
+           (h.total_fuel_ul.state != PFE_SIG_NOT_AVAILABLE);
+}
+
+/* Module frames of pgn sent while another node's were on the bus with a
+ * value: within window_us after one of theirs. */
 static unsigned shadowing(const record_t *rec, uint8_t module_sa, uint32_t pgn, uint64_t window_us,
                           unsigned *theirs, unsigned *ours)
 {
@@ -205,9 +220,11 @@ static unsigned shadowing(const record_t *rec, uint8_t module_sa, uint32_t pgn, 
             continue;
         }
         if (x->sa != module_sa) {
-            seen = true;
-            last_other = x->t_us;
-            (*theirs)++;
+            if (carries_value(x)) {
+                seen = true;
+                last_other = x->t_us;
+                (*theirs)++;
+            }
             continue;
         }
         (*ours)++;
