@@ -102,6 +102,15 @@ int main(int argc, char **argv)
         char summary[HAL_REPLAY_ECU_SUMMARY_MAX];
         (void)hal_replay_ecu_summary(&run, summary, sizeof summary);
         fputs(summary, stdout);
+        const pfe_identify_t *id = &run.ecu.identify;
+        const pfe_identify_counters_t *ic = pfe_identify_counters(id);
+        printf("pfe_ecu_replay: identification: mass %lu kg, aux power %lu W, %s; samples %lu used, "
+               "%lu rejected; windows %lu used, %lu rejected; %lu mass updates\n",
+               (unsigned long)pfe_identify_mass_kg(id), (unsigned long)pfe_identify_aux_power_w(id),
+               pfe_identify_converged(id) ? "converged" : "not converged",
+               (unsigned long)ic->samples_used, (unsigned long)ic->samples_rejected,
+               (unsigned long)ic->windows_used, (unsigned long)ic->windows_rejected,
+               (unsigned long)ic->mass_updates);
     }
     if (st->read_failed) {
         fprintf(stderr, "pfe_ecu_replay: %s: read error after line %lu\n", args.log_path,
