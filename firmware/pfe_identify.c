@@ -91,7 +91,8 @@ static void reset_information(pfe_identify_t *id)
     id->n_mass = 0U;
     id->have_mean = false;
     id->have_prev = false;
-    id->win_n = 0U;
+    id->win_on = false;
+    id->pend_on = false;
 }
 
 int pfe_identify_init(pfe_identify_t *id, const pfe_vehicle_calib_t *seed,
@@ -135,7 +136,8 @@ int pfe_identify_set_drag_reduction(pfe_identify_t *id, uint32_t reduction_bp)
     const uint32_t keep_bp = 10000U - reduction_bp;
     id->air_q32 = (uint32_t)pfe_udiv_round_u64((uint64_t)id->air_full_q32 * keep_bp, 10000U);
     id->have_prev = false;
-    id->win_n = 0U;
+    id->win_on = false;
+    id->pend_on = false;
     return PFE_OK;
 }
 
@@ -225,17 +227,22 @@ static bool information_corrupted(const pfe_identify_t *id)
            (id->mean_x_q4 < -mx) || (id->mean_y_q4 > my) || (id->mean_y_q4 < -my);
 }
 
-/* A window of win_n intervals is complete (header, 1. and 2.). */
-static void close_window(pfe_identify_t *id, int32_t v_mm_s)
+/* A window w is complete (header, 1. and 2.); s_mm_s is the sum of the
+ * PFE_ID_SPEED_AVG speeds around its last sample. */
+static void close_window(pfe_identify_t *id, const pfe_id_window_t *w, int32_t s_mm_s)
 {
     /* T <= 20 * 250 ms: 2 T <= 10000, a 16-bit divisor; the sums are twice the trapezoids. */
-    const uint32_t t2 = 2U * id->win_ms;
-    /* v^2 - v0^2 in (mm/s)^2 = 2 uJ/kg, |.| < 2^31; in nJ/kg * 2 it is 1000 times that. */
-    const int64_t ke2 = ((int64_t)v_mm_s * v_mm_s) - ((int64_t)id->win_v0_mm_s * id->win_v0_mm_s);
+    const uint32_t t2 = 2U * w->ms;
+    /* The mean speeds' v^2 - v0^2 in (mm/s)^2 = 2 uJ/kg: the sums are below
+     * 7 * 36000 < 2^18, their squares' difference below 2^36, divided by
+     * PFE_ID_SPEED_AVG^2 (49) below 2^31, as for single speeds; in
+     * nJ/kg * 2 it is 1000 times that. */
+    const int64_t ke2 = sdiv_round(((int64_t)s_mm_s * s_mm_s) - ((int64_t)w->s0_mm_s * w->s0_mm_s),
+                                   PFE_ID_SPEED_AVG * PFE_ID_SPEED_AVG);
     /* x: (nJ/kg * 2) / (ms * 2) = uW/kg, then mW/kg. |1000 ke2| < 2^41. */
-    const int64_t x = div1000(sdiv_round((1000 * ke2) + id->win_spec2_nj_kg, t2));
+    const int64_t x = div1000(sdiv_round((1000 * ke2) + w->spec2_nj_kg, t2));
     /* y: (uJ * 2) / (ms * 2) = mW, then W. mj ke2 <= 10^5 * 2^31 < 2^48. */
-    const int64_t y2 = (id->win_fuel2_uj - id->win_air2_uj) - ((int64_t)id->rot_mass_kg * ke2);
+    const int64_t y2 = (w->fuel2_uj - w->air2_uj) - ((int64_t)id->rot_mass_kg * ke2);
     const int64_t y = div1000(sdiv_round(y2, t2));
     if ((x > PFE_ID_X_MAX_MW_KG) || (x < -PFE_ID_X_MAX_MW_KG) ||
         (y > (int64_t)PFE_POWER_MAX_W) || (y < -(int64_t)PFE_POWER_MAX_W)) {
@@ -275,6 +282,64 @@ static void close_window(pfe_identify_t *id, int32_t v_mm_s)
     id->counters.windows_used = sat_inc(id->counters.windows_used);
     id->since_window_ms = 0U;
     update_aux(id);
+}
+
+/* Sum of the PFE_ID_SPEED_AVG speeds in the ring, mm/s: < 7 * 36000 < 2^18. */
+static int32_t hist_sum(const pfe_identify_t *id)
+{
+    int32_t sum = 0;
+    for (uint32_t k = 0U; k < PFE_ID_SPEED_AVG; k++) {
+        sum += id->hist_mm_s[k];
+    }
+    return sum;
+}
+
+static void hist_push(pfe_identify_t *id, int32_t v_mm_s)
+{
+    id->hist_mm_s[id->hist_i] = v_mm_s;
+    id->hist_i = (id->hist_i + 1U) % PFE_ID_SPEED_AVG;
+    id->hist_n = (id->hist_n < PFE_ID_SPEED_AVG) ? (id->hist_n + 1U) : PFE_ID_SPEED_AVG;
+}
+
+/* The interval from the previous sample to this one (speed v_mm_s and
+ * the trapezoid terms), in a run of consecutive samples (header, 1.). */
+static void add_interval(pfe_identify_t *id, int32_t v_mm_s, uint32_t dt_ms, int64_t fuel_mw,
+                         int64_t air_mw, int64_t spec_uw)
+{
+    hist_push(id, v_mm_s);
+    if (!id->win_on) {
+        /* the previous sample starts a window once PFE_ID_SPEED_HALF come
+         * before it: the ring holds those, it and this one */
+        if (id->hist_n < (PFE_ID_SPEED_HALF + 2U)) {
+            return;
+        }
+        id->win_on = true;
+        id->win = (pfe_id_window_t){0};
+    }
+    /* (a + b) * dt: fuel and air < 2^32 * 250 < 2^40, spec < 2^27 * 250
+     * < 2^35, per interval; PFE_ID_WINDOW_INTERVALS (20) add 4.4 bits. */
+    const int64_t dt = (int64_t)dt_ms;
+    pfe_id_window_t *w = &id->win;
+    w->fuel2_uj += (id->prev_fuel_mw + fuel_mw) * dt;
+    w->air2_uj += (id->prev_air_mw + air_mw) * dt;
+    w->spec2_nj_kg += (id->prev_spec_uw_kg + spec_uw) * dt;
+    w->ms += dt_ms;
+    w->n++;
+    if (w->n == PFE_ID_SPEED_HALF) {
+        /* the ring is full (PFE_ID_SPEED_HALF + 2 + 3 - 1 >= 7 speeds) and
+         * centred on this window's first sample, the last one of the
+         * window before it */
+        w->s0_mm_s = hist_sum(id);
+        if (id->pend_on) {
+            close_window(id, &id->pend, w->s0_mm_s);
+            id->pend_on = false;
+        }
+    }
+    if (w->n >= PFE_ID_WINDOW_INTERVALS) {
+        id->pend = *w;
+        id->pend_on = true;
+        id->win = (pfe_id_window_t){0};
+    }
 }
 
 /* Interval time in ms from the sample times, sub-millisecond rest carried;
@@ -336,12 +401,14 @@ static int64_t specific_force_um_s2(const pfe_identify_t *id, int32_t grade_ppm)
     return along + pfe_rshift_round((int64_t)id->roll_q32 * normal, 32U);
 }
 
-/* |v - v_prev| / dt beyond PFE_ID_ACCEL_MAX_UM_S2: |dv| [mm/s] * 1000 against
- * a_max [mm/s^2] * dt [ms]; both below 2^27. */
+/* |v - v_prev| beyond PFE_ID_ACCEL_MAX_UM_S2 * dt + PFE_ID_SPEED_MARGIN_MM_S:
+ * |dv| [mm/s] * 1000 against a_max [mm/s^2] * dt [ms] + margin [mm/s] * 1000;
+ * both below 2^30. */
 static bool speed_jump(int32_t v_prev, int32_t v, uint32_t dt_ms)
 {
     const int64_t dv = (v > v_prev) ? ((int64_t)v - v_prev) : ((int64_t)v_prev - v);
-    return (dv * 1000) > (((int64_t)PFE_ID_ACCEL_MAX_UM_S2 / 1000) * (int64_t)dt_ms);
+    return (dv * 1000) > ((((int64_t)PFE_ID_ACCEL_MAX_UM_S2 / 1000) * (int64_t)dt_ms) +
+                          ((int64_t)PFE_ID_SPEED_MARGIN_MM_S * 1000));
 }
 
 static pfe_id_result_t reject(pfe_identify_t *id, pfe_id_result_t why)
@@ -357,7 +424,8 @@ pfe_id_result_t pfe_identify_step(pfe_identify_t *id, const pfe_identify_sample_
     }
     if ((s == NULL) || !id->ready) {
         id->have_prev = false;
-        id->win_n = 0U;
+        id->win_on = false;
+        id->pend_on = false;
         return reject(id, PFE_ID_REJ_INVALID);
     }
     uint32_t dt_ms = 0U;
@@ -377,7 +445,8 @@ pfe_id_result_t pfe_identify_step(pfe_identify_t *id, const pfe_identify_sample_
     const pfe_id_result_t g = gate(s, fuel_mw);
     if (g != PFE_ID_USED) {
         id->have_prev = false;
-        id->win_n = 0U;
+        id->win_on = false;
+        id->pend_on = false;
         return reject(id, g);
     }
     const int32_t v = s->speed_mm_s; /* in [8000, 36000] from here */
@@ -394,32 +463,19 @@ pfe_id_result_t pfe_identify_step(pfe_identify_t *id, const pfe_identify_sample_
 
     pfe_id_result_t result = PFE_ID_USED;
     if (!dt_ok || !id->have_prev) {
+        /* a new run of consecutive samples starts here */
         result = id->have_prev ? PFE_ID_REJ_TIME : PFE_ID_USED;
-        id->win_n = 0U;
+        id->win_on = false;
+        id->pend_on = false;
+        id->hist_n = 0U;
+        hist_push(id, v);
     } else if (speed_jump(id->prev_speed_mm_s, v, dt_ms)) {
         id->have_prev = false;
-        id->win_n = 0U;
+        id->win_on = false;
+        id->pend_on = false;
         return reject(id, PFE_ID_REJ_ACCEL);
     } else {
-        if (id->win_n == 0U) {
-            id->win_v0_mm_s = id->prev_speed_mm_s;
-            id->win_ms = 0U;
-            id->win_fuel2_uj = 0;
-            id->win_air2_uj = 0;
-            id->win_spec2_nj_kg = 0;
-        }
-        /* (a + b) * dt: fuel and air < 2^32 * 250 < 2^40, spec < 2^27 * 250
-         * < 2^35, per interval; PFE_ID_WINDOW_INTERVALS (20) add 4.4 bits. */
-        const int64_t dt = (int64_t)dt_ms;
-        id->win_fuel2_uj += (id->prev_fuel_mw + fuel_mw) * dt;
-        id->win_air2_uj += (id->prev_air_mw + air_mw) * dt;
-        id->win_spec2_nj_kg += (id->prev_spec_uw_kg + spec_uw) * dt;
-        id->win_ms += dt_ms;
-        id->win_n++;
-        if (id->win_n >= PFE_ID_WINDOW_INTERVALS) {
-            close_window(id, v);
-            id->win_n = 0U;
-        }
+        add_interval(id, v, dt_ms, fuel_mw, air_mw, spec_uw);
     }
     id->have_prev = true;
     id->prev_speed_mm_s = v;

@@ -30,7 +30,15 @@
  *    v^2 / 2 between the window's first and last speed: no acceleration is
  *    differentiated from 1/256 km/h speed samples (the noise of a 100 ms
  *    difference is 0.2 m/s^2 for 0.05 km/h of speed noise). The other
- *    integrals are trapezoids over the samples.
+ *    integrals are trapezoids over the samples. Each boundary speed is the
+ *    mean of the PFE_ID_SPEED_AVG samples centred on the boundary sample:
+ *    speed noise in v^2 / 2 is noise in the regressor x, which biases the
+ *    mass low by about var(noise) / var(x) (errors in variables; -30 % for
+ *    a 60 t truck with 0.3 km/h of speed noise and single samples), and the
+ *    mean divides that variance by 7. Centred, it adds no lag against the
+ *    fuel integral; so a window is complete PFE_ID_SPEED_HALF samples after
+ *    its last one, and the first window of a run of consecutive samples
+ *    starts at its PFE_ID_SPEED_HALF + 1-th sample.
  *
  * 2. Aux power drops out of the mass regression. x and y of each accepted
  *    window go through the same exponential mean (weight 2^-PFE_ID_MEAN_SHIFT
@@ -68,9 +76,13 @@
  * PFE_POWER_MAX_W] (fuel cut, idle, motoring and near-zero load are left
  * out, where eq. 3.9's switch and a constant eta do not hold); the time
  * since the previous sample in [PFE_ID_DT_MIN_MS, PFE_ID_DT_MAX_MS] and the
- * speed change no more than PFE_ID_ACCEL_MAX_UM_S2 per second (else a new
- * window starts at this sample, or at the next one for an implausible speed
- * change). Each window: |x| <= PFE_ID_X_MAX_MW_KG and |y| <= PFE_POWER_MAX_W.
+ * speed change no more than PFE_ID_ACCEL_MAX_UM_S2 times the interval plus
+ * PFE_ID_SPEED_MARGIN_MM_S (else a new window starts at this sample, or at
+ * the next one for an implausible speed change; the margin is for speed
+ * noise: 0.5 m/s is four standard deviations of the difference of two
+ * samples with 0.3 km/h of noise each, which without it breaks most
+ * windows; a window waiting for its end speed is discarded with the one
+ * in progress). Each window: |x| <= PFE_ID_X_MAX_MW_KG and |y| <= PFE_POWER_MAX_W.
  * Every window once the mass has 8 updates: not an outlier. Mass updates:
  * |dx| >= PFE_ID_EXCITE_MW_KG. A constant
  * speed on a constant grade gives dx of noise only: no mass update.
@@ -114,6 +126,9 @@
 #define PFE_ID_SPEED_MAX_MM_S 36000      /* 129.6 km/h */
 #define PFE_ID_GRADE_MAX_PPM 80000       /* 8 % */
 #define PFE_ID_ACCEL_MAX_UM_S2 2000000   /* 2 m/s^2 between successive samples */
+#define PFE_ID_SPEED_MARGIN_MM_S 500     /* plus this per sample: speed noise (gating below) */
+#define PFE_ID_SPEED_HALF 3U             /* a boundary speed: the mean of the samples */
+#define PFE_ID_SPEED_AVG (2U * PFE_ID_SPEED_HALF + 1U) /* from 3 before to 3 after it */
 #define PFE_ID_FUEL_POWER_MIN_W 20000U   /* eta rho_d fc: 5 L/h at eta 0.4, above idle */
 #define PFE_ID_X_MAX_MW_KG 100000        /* |x| of a window, 100 W/kg */
 #define PFE_ID_AUX_MAX_W 100000U         /* as pfe_calib_check_vehicle */
@@ -161,6 +176,16 @@ typedef struct {
     uint32_t mass_updates;      /* since init (saturating, as every counter) */
 } pfe_identify_counters_t;
 
+/* A window's sums: twice the trapezoids of its intervals. */
+typedef struct {
+    uint32_t n;               /* intervals */
+    uint32_t ms;              /* T, ms, <= PFE_ID_WINDOW_INTERVALS * PFE_ID_DT_MAX_MS */
+    int32_t s0_mm_s;          /* the sum of the PFE_ID_SPEED_AVG speeds around its start, < 2^18 */
+    int64_t fuel2_uj;         /* uJ * 2, < 2^45 */
+    int64_t air2_uj;          /* uJ * 2, < 2^45 */
+    int64_t spec2_nj_kg;      /* nJ/kg * 2, |.| < 2^40 */
+} pfe_id_window_t;
+
 /* Caller-owned state. Read it through the functions below. */
 typedef struct {
     bool ready;               /* init succeeded */
@@ -181,13 +206,16 @@ typedef struct {
     int64_t prev_fuel_mw;     /* eta rho_d fc, mW, <= 2^31 */
     int64_t prev_air_mw;      /* k v^3, mW, < 2^31 */
     int64_t prev_spec_uw_kg;  /* v g (cr cos + sin), uW/kg, |.| < 2^27 */
-    /* window in progress: sums of (previous + this) * dt, twice the trapezoid */
-    uint32_t win_n;           /* intervals */
-    uint32_t win_ms;          /* T, ms, <= PFE_ID_WINDOW_INTERVALS * PFE_ID_DT_MAX_MS */
-    int32_t win_v0_mm_s;      /* speed at the window's start */
-    int64_t win_fuel2_uj;     /* uJ * 2, < 2^45 */
-    int64_t win_air2_uj;      /* uJ * 2, < 2^45 */
-    int64_t win_spec2_nj_kg;  /* nJ/kg * 2, |.| < 2^40 */
+    /* the speeds of the run of consecutive samples, for the boundary means */
+    int32_t hist_mm_s[PFE_ID_SPEED_AVG]; /* ring, the last ones */
+    uint32_t hist_n;          /* speeds in it, <= PFE_ID_SPEED_AVG */
+    uint32_t hist_i;          /* the slot of the next one */
+    /* window in progress (its s0 known once win.n >= PFE_ID_SPEED_HALF),
+     * and the one before it, complete but for its end speed */
+    bool win_on;
+    pfe_id_window_t win;
+    bool pend_on;
+    pfe_id_window_t pend;
     /* exponential means of the windows */
     bool have_mean;
     int64_t mean_x_q4;        /* mW/kg * 16 */

@@ -33,7 +33,7 @@ static void reset_information(identify_ref_t *r)
     r->n_mass = 0U;
     r->have_mean = false;
     r->have_prev = false;
-    r->win_n = 0U;
+    r->win_on = r->pend_on = false;
 }
 
 static void update_mass(identify_ref_t *r, double dx, double dy, double e2)
@@ -57,11 +57,12 @@ static void update_mass(identify_ref_t *r, double dx, double dy, double e2)
     }
 }
 
+/* The pending window, complete with v, the mean speed around its end. */
 static void close_window(identify_ref_t *r, double v)
 {
-    const double ke = 0.5 * (v * v - r->win_v0 * r->win_v0);
-    const double x = (ke + r->win_spec) / r->win_t;
-    const double y = (r->win_fuel - r->win_air - r->rot_mass * ke) / r->win_t;
+    const double ke = 0.5 * (v * v - r->pend_v0 * r->pend_v0);
+    const double x = (ke + r->pend_spec) / r->pend_t;
+    const double y = (r->pend_fuel - r->pend_air - r->rot_mass * ke) / r->pend_t;
     if ((fabs(x) > PFE_ID_X_MAX_MW_KG / 1000.0) || (fabs(y) > PFE_POWER_MAX_W)) {
         return;
     }
@@ -89,6 +90,22 @@ static void close_window(identify_ref_t *r, double v)
     r->windows_used++;
     r->since_window = 0.0;
     r->aux = clampd(r->mean_y - r->mass * r->mean_x, 0.0, PFE_ID_AUX_MAX_W);
+}
+
+static double hist_mean(const identify_ref_t *r)
+{
+    double sum = 0.0;
+    for (unsigned k = 0U; k < PFE_ID_SPEED_AVG; k++) {
+        sum += r->hist[k];
+    }
+    return sum / PFE_ID_SPEED_AVG;
+}
+
+static void hist_push(identify_ref_t *r, double v)
+{
+    r->hist[r->hist_i] = v;
+    r->hist_i = (r->hist_i + 1U) % PFE_ID_SPEED_AVG;
+    r->hist_n += (r->hist_n < PFE_ID_SPEED_AVG) ? 1U : 0U;
 }
 
 void identify_ref_step(identify_ref_t *r, const pfe_identify_sample_t *s)
@@ -124,7 +141,7 @@ void identify_ref_step(identify_ref_t *r, const pfe_identify_sample_t *s)
                     (fuel_w >= PFE_ID_FUEL_POWER_MIN_W) && (fuel_w <= PFE_POWER_MAX_W);
     if (!ok) {
         r->have_prev = false;
-        r->win_n = 0U;
+        r->win_on = r->pend_on = false;
         return;
     }
     const double v = s->speed_mm_s / 1000.0;
@@ -132,24 +149,43 @@ void identify_ref_step(identify_ref_t *r, const pfe_identify_sample_t *s)
     const double air_w = r->air_k * v * v * v;
     const double spec = v * r->gravity * (r->roll * cos(alpha) + sin(alpha));
     if (!dt_ok || !r->have_prev) {
-        r->win_n = 0U;
-    } else if (fabs(v - r->prev_v) / dt > PFE_ID_ACCEL_MAX_UM_S2 / 1e6) {
+        r->win_on = r->pend_on = false;
+        r->hist_n = 0U;
+        hist_push(r, v);
+    } else if (fabs(v - r->prev_v) > (PFE_ID_ACCEL_MAX_UM_S2 / 1e6) * dt + PFE_ID_SPEED_MARGIN_MM_S / 1e3) {
         r->have_prev = false;
-        r->win_n = 0U;
+        r->win_on = r->pend_on = false;
         return;
     } else {
-        if (r->win_n == 0U) {
-            r->win_v0 = r->prev_v;
+        hist_push(r, v);
+        if (!r->win_on && (r->hist_n >= PFE_ID_SPEED_HALF + 2U)) {
+            r->win_on = true;
+            r->win_n = 0U;
             r->win_t = r->win_fuel = r->win_air = r->win_spec = 0.0;
         }
-        r->win_fuel += 0.5 * (r->prev_fuel_w + fuel_w) * dt;
-        r->win_air += 0.5 * (r->prev_air_w + air_w) * dt;
-        r->win_spec += 0.5 * (r->prev_spec + spec) * dt;
-        r->win_t += dt;
-        r->win_n++;
-        if (r->win_n >= PFE_ID_WINDOW_INTERVALS) {
-            close_window(r, v);
-            r->win_n = 0U;
+        if (r->win_on) {
+            r->win_fuel += 0.5 * (r->prev_fuel_w + fuel_w) * dt;
+            r->win_air += 0.5 * (r->prev_air_w + air_w) * dt;
+            r->win_spec += 0.5 * (r->prev_spec + spec) * dt;
+            r->win_t += dt;
+            r->win_n++;
+            if (r->win_n == PFE_ID_SPEED_HALF) {
+                r->win_v0 = hist_mean(r);
+                if (r->pend_on) {
+                    close_window(r, r->win_v0);
+                    r->pend_on = false;
+                }
+            }
+            if (r->win_n >= PFE_ID_WINDOW_INTERVALS) {
+                r->pend_t = r->win_t;
+                r->pend_v0 = r->win_v0;
+                r->pend_fuel = r->win_fuel;
+                r->pend_air = r->win_air;
+                r->pend_spec = r->win_spec;
+                r->pend_on = true;
+                r->win_n = 0U;
+                r->win_t = r->win_fuel = r->win_air = r->win_spec = 0.0;
+            }
         }
     }
     r->have_prev = true;

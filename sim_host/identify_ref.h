@@ -36,7 +36,11 @@ typedef struct {
     uint64_t last_us;
     double prev_v, prev_fuel_w, prev_air_w, prev_spec;
     unsigned win_n;
+    bool win_on, pend_on;       /* a window in progress; one waiting for its end speed */
     double win_t, win_v0, win_fuel, win_air, win_spec; /* s, m/s, J, J, J/kg */
+    double pend_t, pend_v0, pend_fuel, pend_air, pend_spec;
+    double hist[PFE_ID_SPEED_AVG]; /* the last speeds of the run, m/s, ring */
+    unsigned hist_n, hist_i;
     bool have_mean;
     double mean_x, mean_y, since_window;
     double sxx, sxy, var;

@@ -257,18 +257,24 @@ static void test_init_refuses_bad_arguments(void **state)
  * fuel power 6.5e6 nL/s * 0.4 * 35800 J/mL = 93080 W; air 3.87 * 20^3 =
  * 30960 W, with the drag coefficient as the model holds it (16622 * 2^-32
  * N per (mm/s)^2, pfe_vehicle) 16622 * 20000^3 / 2^32 mW = 30960.888 W:
- * y = 62119.1 W, held 62119 W; aux = y - 40000 kg * 1.373 W/kg = 7199 W. */
+ * y = 62119.1 W, held 62119 W; aux = y - 40000 kg * 1.373 W/kg = 7199 W.
+ * The window starts at the 4th sample (3 before it for its start speed's
+ * mean), spans 20 intervals and is complete 3 samples after its last: 27
+ * samples, and not one fewer. */
 static void test_one_window_by_hand(void **state)
 {
     (void)state;
     pfe_identify_t *id = fresh();
     pfe_identify_sample_t s = {0U, 20000, 0, 6500000U, true, true, true, false};
-    for (uint32_t k = 0U; k <= PFE_ID_WINDOW_INTERVALS; k++) {
+    for (uint32_t k = 0U; k < 26U; k++) {
         s.now_us = 100000ULL * k;
         assert_int_equal(pfe_identify_step(id, &s), PFE_ID_USED);
     }
+    assert_int_equal(pfe_identify_counters(id)->windows_used, 0);
+    s.now_us = 100000ULL * 26U;
+    assert_int_equal(pfe_identify_step(id, &s), PFE_ID_USED);
     assert_int_equal(pfe_identify_counters(id)->windows_used, 1);
-    assert_int_equal(pfe_identify_counters(id)->samples_used, PFE_ID_WINDOW_INTERVALS + 1U);
+    assert_int_equal(pfe_identify_counters(id)->samples_used, 27);
     assert_int_equal(pfe_identify_aux_power_w(id), 7199);
     assert_int_equal(pfe_identify_mass_kg(id), 40000);
     assert_int_equal(pfe_identify_counters(id)->mass_updates, 0);
@@ -456,15 +462,15 @@ static void test_time_and_speed_jumps(void **state)
     s.now_us += 100000U;
     assert_int_equal(pfe_identify_step(id, &s), PFE_ID_USED);
     s.now_us += 100000U;
-    s.speed_mm_s += 201; /* 2.01 m/s^2 over 100 ms */
+    s.speed_mm_s += 701; /* 2 m/s^2 over 100 ms plus the 0.5 m/s margin, and 1 mm/s */
     assert_int_equal(pfe_identify_step(id, &s), PFE_ID_REJ_ACCEL);
     s.now_us += 100000U;
     assert_int_equal(pfe_identify_step(id, &s), PFE_ID_USED); /* anchors again */
     s.now_us += 100000U;
-    s.speed_mm_s += 200; /* exactly 2 m/s^2: allowed */
+    s.speed_mm_s += 700; /* exactly 0.2 + 0.5 m/s: allowed */
     assert_int_equal(pfe_identify_step(id, &s), PFE_ID_USED);
     s.now_us += 100000U;
-    s.speed_mm_s -= 201;
+    s.speed_mm_s -= 701;
     assert_int_equal(pfe_identify_step(id, &s), PFE_ID_REJ_ACCEL);
     assert_int_equal(pfe_identify_counters(id)->samples_used, 5);
     assert_int_equal(pfe_identify_counters(id)->samples_rejected, 5);
@@ -682,7 +688,8 @@ static void test_corrupted_information_resets(void **state)
 }
 
 /* A window beyond 100 W/kg (a rolling coefficient of 0.1, 8 % and 2 m/s^2
- * at 33 m/s: about 130 W/kg) is refused, counted. */
+ * at 31 to 35 m/s: about 125 W/kg) is refused, counted: 27 samples make
+ * the first window (test_one_window_by_hand). */
 static void test_window_out_of_bounds(void **state)
 {
     (void)state;
@@ -690,8 +697,8 @@ static void test_window_out_of_bounds(void **state)
     seed.roll_coef_ppm = 100000U;
     memset(&g_id, 0xA5, sizeof g_id);
     assert_int_equal(pfe_identify_init(&g_id, &seed, &pfe_default_env), PFE_OK);
-    for (uint32_t k = 0U; k <= PFE_ID_WINDOW_INTERVALS; k++) {
-        const pfe_identify_sample_t smp = {100000ULL * k, 32000 + (int32_t)(200U * k / 1U) / 1,
+    for (uint32_t k = 0U; k < 27U; k++) {
+        const pfe_identify_sample_t smp = {100000ULL * k, 30000 + (int32_t)(200U * k),
                                            PFE_ID_GRADE_MAX_PPM, 100000000U, true, true, true, false};
         assert_int_equal(pfe_identify_step(&g_id, &smp), PFE_ID_USED);
     }
