@@ -6,7 +6,9 @@
 #                     refuses a bad file with exit status 2, and drivegen,
 #                     pfe_ecu_replay, run_report agree on a 60 t truck
 #   test-foreign-trucks  foreign-truck logs (12 t, 60 t; no SSI, SSI, VDS;
-#                     the engine's LFE1 stopping; hostile variants),
+#                     the engine's LFE1 stopping; identification from it
+#                     with the default calibration, then 5 minutes
+#                     without it; hostile variants),
 #                     generated at test time, replayed on the host, judged
 #                     (tests/host/foreign_trucks.sh)
 #   foreign-bench     the same, printing only its bench: lines

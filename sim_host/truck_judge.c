@@ -8,6 +8,8 @@
  *   truck_judge hostile CLEAN HOSTILE --bursts N [--name NAME] [--module-sa SA]
  *                     [--expect conflicts|rejected [--frames F [--exact]]]
  *   truck_judge same LOG_A LOG_B
+ *   truck_judge identify RECORD --truth CSV --from S --mass KG [--for S] [--name NAME]
+ *                     [--module-sa SA] [--max-mass-err-pct E] [--max-fuel-err-pct E] [--off]
  *
  * same: two logs of one drive (truckgen's printed form and its -L form)
  * hold the same frames at the same times from their first frame.
@@ -43,6 +45,25 @@
  * CLEAN's; with --frames F (the hostile frames in the log), by at most F,
  * and with --exact by F exactly (every spoofed or implausible frame
  * counted; the counter holds at 250). Prints "bench: hostile_NAME_bad_frames X frames".
+ *
+ * identify: RECORD is the replay, with a calibration that is not the
+ * truck's (the default one), of a log whose engine LFE1 stops at --from S
+ * (truckgen --engine-fuel-stop-s S; seconds from the record's first frame);
+ * the truck's true mass is --mass KG. No other node's LFE1 with a value may
+ * come after S (else the log is not what it is said to be). At S, the
+ * module's last PFE_InputStatus must say MassSource 2 (identified) and
+ * IdentificationState 1 (converged), and its VehicleMass must be within
+ * --max-mass-err-pct (default 15) of KG; the module's own fuel used
+ * (PFE_OwnFuel OwnTotalFuelUsed) over the --for seconds (default 300) from
+ * S on, against the truth's (--truth, as for avail) over the same span, must
+ * be within --max-fuel-err-pct (default 10), and the record must cover the
+ * span. With --off, the contrast: the same drive replayed with no engine
+ * LFE1 at all (truckgen --engine-fuel-stop-s 0), so nothing to identify
+ * from; the figures are printed and the only checks are MassSource 0 (the
+ * calibration) and IdentificationState 0 (learning) at S. Prints when
+ * IdentificationState first said converged,
+ * "bench: identify_mass_err_pct_NAME X pct" and
+ * "bench: identify_fuel_err_pct_NAME X pct" (identify_off_... with --off).
  *
  * Exit status 0 when every check holds, 1 when one fails, 2 on bad
  * arguments or an unreadable record.
@@ -587,6 +608,163 @@ static int hostile(int argc, char **argv)
     return fail;
 }
 
+static int identify(int argc, char **argv)
+{
+    const char *path = NULL, *name = "log", *truth_path = NULL;
+    unsigned long module_sa = 0x8CU;
+    double from_s = -1.0, for_s = 300.0, mass_kg = 0.0, max_mass_pct = 15.0, max_fuel_pct = 10.0;
+    bool off = false;
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        if (a[0] != '-') {
+            path = a;
+            continue;
+        }
+        if (strcmp(a, "--off") == 0) {
+            off = true;
+            continue;
+        }
+        const char *v = (i + 1 < argc) ? argv[++i] : "";
+        int bad = 0;
+        if (strcmp(a, "--name") == 0) {
+            name = v;
+        } else if (strcmp(a, "--module-sa") == 0) {
+            bad = cli_parse_ul(v, 0U, 253U, &module_sa);
+        } else if (strcmp(a, "--truth") == 0) {
+            truth_path = v;
+        } else if (strcmp(a, "--from") == 0) {
+            bad = cli_parse_double(v, 0.0, 36000.0, &from_s);
+        } else if (strcmp(a, "--for") == 0) {
+            bad = cli_parse_double(v, 1.0, 36000.0, &for_s);
+        } else if (strcmp(a, "--mass") == 0) {
+            bad = cli_parse_double(v, 1000.0, 100000.0, &mass_kg);
+        } else if (strcmp(a, "--max-mass-err-pct") == 0) {
+            bad = cli_parse_double(v, 0.0, 1000.0, &max_mass_pct);
+        } else if (strcmp(a, "--max-fuel-err-pct") == 0) {
+            bad = cli_parse_double(v, 0.0, 1000.0, &max_fuel_pct);
+        } else {
+            bad = 1;
+        }
+        if (bad) {
+            fprintf(stderr, "truck_judge: bad option %s '%s'\n", a, v);
+            return 2;
+        }
+    }
+    if ((path == NULL) || (truth_path == NULL) || (from_s < 0.0) || (mass_kg <= 0.0)) {
+        fprintf(stderr, "truck_judge: identify needs RECORD --truth CSV --from S --mass KG\n");
+        return 2;
+    }
+    static record_t rec;
+    if (load(path, &rec) != 0) {
+        return 2;
+    }
+    const uint8_t sa = (uint8_t)module_sa;
+    const uint64_t from_us = rec.first_us + (uint64_t)llround(from_s * 1e6);
+    const uint64_t to_us = from_us + (uint64_t)llround(for_s * 1e6);
+    const char *tag = off ? "identify_off" : "identify";
+    int fail = 0;
+    /* The state at the end of the identification phase, and when the
+     * module first said converged. */
+    bool have_st = false;
+    double converged_s = -1.0;
+    unsigned engine_after = 0U, engine_before = 0U;
+    uint32_t st_source = 99U, st_ident = 99U, st_mass = 0U;
+    bool st_ident_valid = false;
+    for (size_t k = 0U; k < rec.n; k++) {
+        const rec_t *x = &rec.r[k];
+        if ((x->pgn == PFE_PGN_LFE1) && (x->sa != sa) && carries_value(x)) {
+            engine_after += (x->t_us > from_us) ? 1U : 0U;
+            engine_before += (x->t_us <= from_us) ? 1U : 0U;
+        }
+        pfe_msg_input_status_t m;
+        if ((x->pgn != PFE_PGN_INPUT_STATUS) || (x->sa != sa) ||
+            (pfe_codec_decode_input_status(&x->f, &m) != PFE_OK)) {
+            continue;
+        }
+        const bool conv = (m.identification.state == PFE_SIG_VALID) && (m.identification.value == 1U);
+        if (conv && (converged_s < 0.0)) {
+            converged_s = (double)(x->t_us - rec.first_us) / 1e6;
+        }
+        if (x->t_us <= from_us) {
+            have_st = true;
+            st_source = (m.mass_source.state == PFE_SIG_VALID) ? m.mass_source.value : 99U;
+            st_ident_valid = m.identification.state == PFE_SIG_VALID;
+            st_ident = st_ident_valid ? m.identification.value : 99U;
+            st_mass = (m.vehicle_mass_kg.state == PFE_SIG_VALID) ? m.vehicle_mass_kg.value : 0U;
+        }
+    }
+    printf("truck_judge %s: engine LFE1 with a value: %u up to %.1f s, %u after it\n", name,
+           engine_before, from_s, engine_after);
+    if (engine_after > 0U) {
+        printf("truck_judge %s: FAIL: the engine's LFE1 goes on after %.1f s\n", name, from_s);
+        fail = 1;
+    }
+    if (!off && (engine_before == 0U)) {
+        printf("truck_judge %s: FAIL: no engine LFE1 to identify from before %.1f s\n", name, from_s);
+        fail = 1;
+    }
+    if (!have_st) {
+        printf("truck_judge %s: FAIL: no PFE_InputStatus from the module before %.1f s\n", name, from_s);
+        return 1;
+    }
+    const double mass_err = 100.0 * ((double)st_mass - mass_kg) / mass_kg;
+    if (converged_s >= 0.0) {
+        printf("truck_judge %s: IdentificationState first converged at %.1f s\n", name, converged_s);
+    } else {
+        printf("truck_judge %s: IdentificationState never converged\n", name);
+    }
+    printf("truck_judge %s: at %.1f s: MassSource %lu, IdentificationState %s%lu, VehicleMass %lu kg "
+           "for %.0f kg (%+.2f %%)\n", name, from_s, (unsigned long)st_source,
+           st_ident_valid ? "" : "not available ", st_ident_valid ? (unsigned long)st_ident : 0UL,
+           (unsigned long)st_mass, mass_kg, mass_err);
+    if (off) {
+        if ((st_source != PFE_MASS_SOURCE_CALIBRATION) || (st_ident != 0U)) {
+            printf("truck_judge %s: FAIL: MassSource 0 and IdentificationState 0 expected without "
+                   "the engine's LFE1\n", name);
+            fail = 1;
+        }
+    } else {
+        if ((st_source != PFE_MASS_SOURCE_IDENTIFIED) || (st_ident != 1U)) {
+            printf("truck_judge %s: FAIL: MassSource 2 (identified) and IdentificationState 1 "
+                   "(converged) expected at %.1f s\n", name, from_s);
+            fail = 1;
+        }
+        if (fabs(mass_err) > max_mass_pct) {
+            printf("truck_judge %s: FAIL: identified mass %+.2f %% off (at most %.1f %%)\n", name,
+                   mass_err, max_mass_pct);
+            fail = 1;
+        }
+    }
+    double fuel_err = 0.0;
+    uint64_t last_own_us = 0U;
+    for (size_t k = 0U; k < rec.n; k++) {
+        if ((rec.r[k].sa == sa) && (rec.r[k].pgn == PFE_PGN_OWN_FUEL)) {
+            last_own_us = rec.r[k].t_us;
+        }
+    }
+    /* one LFE1 period of slack at the end */
+    if (last_own_us + 100000U < to_us) {
+        printf("truck_judge %s: FAIL: the record ends at %.1f s, before %.1f s\n", name,
+               (double)(last_own_us - rec.first_us) / 1e6, from_s + for_s);
+        fail = 1;
+    }
+    const int trc = fuel_against_truth(&rec, sa, from_us, to_us, truth_path, name, &fuel_err);
+    if (trc == 2) {
+        return 2;
+    }
+    if ((trc != 0) || (!off && (fabs(fuel_err) > max_fuel_pct))) {
+        printf("truck_judge %s: FAIL: own fuel used over %.0f s %+.2f %% off the truth (at most "
+               "%.1f %%)\n", name, for_s, fuel_err, max_fuel_pct);
+        fail = 1;
+    }
+    printf("bench: %s_mass_err_pct_%s %.2f pct\n", tag, name, mass_err);
+    printf("bench: %s_fuel_err_pct_%s %.2f pct\n", tag, name, fuel_err);
+    if (!fail) {
+        printf("truck_judge %s: pass\n", name);
+    }
+    return fail;
+}
+
 /* Two logs of one drive in two forms (candump printed -t z and -L): the
  * same frames, at the same times from their first frame. */
 static int same(int argc, char **argv)
@@ -655,10 +833,16 @@ int main(int argc, char **argv)
     if ((argc >= 2) && (strcmp(argv[1], "hostile") == 0)) {
         return hostile(argc, argv);
     }
+    if ((argc >= 2) && (strcmp(argv[1], "identify") == 0)) {
+        return identify(argc, argv);
+    }
     fprintf(stderr, "usage: truck_judge avail RECORD [--name NAME] [--module-sa SA] [--warmup-s S]\n"
                     "                         [--min-pct P] [--grade-source N] [--min-module-lfe1 N]\n"
                     "       truck_judge hostile CLEAN HOSTILE --bursts N [--name NAME] [--module-sa SA]\n"
                     "                         [--expect conflicts|rejected [--frames F [--exact]]]\n"
-                    "       truck_judge same LOG_A LOG_B\n");
+                    "       truck_judge same LOG_A LOG_B\n"
+                    "       truck_judge identify RECORD --truth CSV --from S --mass KG [--for S] [--name NAME]\n"
+                    "                         [--module-sa SA] [--max-mass-err-pct E] [--max-fuel-err-pct E]\n"
+                    "                         [--off]\n");
     return 2;
 }

@@ -14,6 +14,14 @@
 #   - the 12 t truck with SSI: GradeSource 0; with VDS altitude over the
 #     hilly road every 100 ms: GradeSource 1; every 1 s: available;
 #   - the engine's LFE1 stopping after 120 s: still available;
+#   - identification (docs/identification.md): the 12 t and the 60 t truck
+#     over rolling speeds (50 to 85 km/h, a change every 15 to 25 s) for
+#     the first 180 s of log, the engine's LFE1 only until then, replayed
+#     with the default (40 t) calibration: at 180 s the mass is identified
+#     and converged, within 15 % of the truth, and the module's own fuel
+#     over the next 5 minutes is within 10 % of the truth's; the same drive
+#     with no engine LFE1 at all gives the contrast (bench:
+#     identify_*_pct_12t, identify_off_*_pct_12t, ... for 60t);
 #   - hostile variants (own-address spoof, speed jumps, random payloads) of
 #     the 12 t truck with SSI and of the 60 t truck without: every valid rate
 #     the module sends is the clean run's, but for one frame per burst, and
@@ -100,6 +108,23 @@ gen 60t-lfe1-stop 60t --engine-fuel-stop-s 120
 replay 60t-lfe1-stop "$out/60t-lfe1-stop.$ext" --calib "$trucks/truck60t.cal"
 judge avail "$out/60t-lfe1-stop.rec" --name 60t_lfe1_stop --grade-source 2
 
+# Identification from the engine's LFE1, then 5 minutes without it; the
+# module is not told which truck it is (default calibration).
+id_profile=0:3,70:25,50:15,80:20,55:15,85:20,60:15,80:20,50:15,75:20,85:60,60:30,80:60,50:30,85:60,70:60,0:20,60:40
+id_stop_s=180
+for t in 12t 60t; do
+    gen "$t-ident" "$t" --profile "$id_profile" --engine-fuel-stop-s "$id_stop_s" \
+        --truth "$out/$t-ident.truth.csv"
+    replay "$t-ident" "$out/$t-ident.$ext"
+    tail -n 1 "$out/$t-ident.replay.txt" | sed "s/^/foreign: $t-ident: /"
+    judge identify "$out/$t-ident.rec" --name "$t" --truth "$out/$t-ident.truth.csv" \
+        --from "$id_stop_s" --for 300 --mass "${t%t}000" --max-mass-err-pct 15 --max-fuel-err-pct 10
+    gen "$t-ident-off" "$t" --profile "$id_profile" --engine-fuel-stop-s 0
+    replay "$t-ident-off" "$out/$t-ident-off.$ext"
+    judge identify "$out/$t-ident-off.rec" --name "$t" --truth "$out/$t-ident.truth.csv" \
+        --from "$id_stop_s" --for 300 --mass "${t%t}000" --off
+done
+
 hostile() { # TRUCK CLEAN KIND EXPECT [truckgen options...]
     h_truck=$1 h_clean=$2 h_kind=$3 h_expect=$4
     shift 4
@@ -151,6 +176,14 @@ must_fail "a clean record judged as spoofed" hostile "$out/60t.rec" "$out/60t.re
     --expect conflicts
 must_fail "a 60 t record judged against a 12 t one" hostile "$out/12t.rec" "$out/60t.rec" --bursts 10
 must_fail "the printed and -L forms of two trucks' logs" same "$out/12t.txt" "$out/60t.log"
+must_fail "the 12 t identification judged against the 60 t truth" identify "$out/12t-ident.rec" \
+    --truth "$out/60t-ident.truth.csv" --from "$id_stop_s" --mass 12000
+must_fail "the 12 t identification judged as a 60 t truck" identify "$out/12t-ident.rec" \
+    --truth "$out/12t-ident.truth.csv" --from "$id_stop_s" --mass 60000
+must_fail "a drive without the engine's LFE1 judged as identified" identify "$out/12t-ident-off.rec" \
+    --truth "$out/12t-ident.truth.csv" --from "$id_stop_s" --mass 12000
+must_fail "the engine's LFE1 said to stop before it does" identify "$out/12t-ident.rec" \
+    --truth "$out/12t-ident.truth.csv" --from 100 --mass 12000
 
 grep '^bench:' "$out/bench.txt" > "$out/bench.lines"
 [ "$fail" -eq 0 ] && echo "foreign: every foreign-truck check holds"
