@@ -118,7 +118,7 @@ $(HOSTSAN)/test_hal_fake: tests/hal/test_hal_fake.c tests/hal/hal_conformance.c 
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
 
 # ... and on the replay backend, with the backend's own tests.
-$(HOSTSAN)/test_hal_replay: tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem.c $(HAL_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/test_hal_replay: tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem.c $(HAL_HDR) tests/replay/log_vectors.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
 

@@ -63,10 +63,10 @@ $(HOST)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) $(REPLAY_OUT)/obj/dbc.o | $(DEPS
 
 # ---------------------------------------------------------------- host tests (ASan, UBSan)
 
-$(HOSTSAN)/test_canlog: tests/host/test_canlog.c $(CANLOG_SRC) sim_host/lateness.c $(CANLOG_HDR) \
+$(HOSTSAN)/test_canlog: tests/host/test_canlog.c $(CANLOG_SRC) sim_host/lateness.c $(CANLOG_HDR) tests/replay/log_vectors.h \
         sim_host/lateness.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Isim_host -o $@ $< $(CANLOG_SRC) sim_host/lateness.c -lcmocka
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Isim_host -o $@ $< $(CANLOG_SRC) sim_host/lateness.c -lcmocka
 
 $(HOSTSAN)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
