@@ -590,6 +590,13 @@ int main(int argc, char **argv)
         }
         return EXIT_INPUT;
     }
+    if (d.dbc->n_messages == 0U) {
+        /* an empty or comment-only file parses, but decodes nothing */
+        fprintf(stderr, "pfe_decode: %s: no message (BO_) in the DBC: nothing to decode with\n",
+                dbc_path);
+        dbc_free(d.dbc);
+        return EXIT_INPUT;
+    }
     int status = 0;
     int fd = STDIN_FILENO;
     const char *name = "<stdin>";

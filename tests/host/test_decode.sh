@@ -171,6 +171,21 @@ if [ "$rc" -ne 1 ] || ! grep -q "no such message" "$tmp/msg_err.txt"; then
 else
     echo "test_decode: unknown --message ok"
 fi
+# An empty DBC, and one with only a version line: nothing to decode with.
+: >"$tmp/empty.dbc"
+printf 'VERSION ""\n\nNS_ :\n\nBS_:\n' >"$tmp/bare.dbc"
+for f in empty bare; do
+    "$dec" --dbc "$tmp/$f.dbc" "$tmp/in.log" >"$tmp/dbc_out.txt" 2>"$tmp/dbc_err.txt"
+    rc=$?
+    if [ "$rc" -ne 1 ] || ! grep -qF "$tmp/$f.dbc: no message (BO_) in the DBC" "$tmp/dbc_err.txt" ||
+        [ -s "$tmp/dbc_out.txt" ]; then
+        echo "test_decode: $f DBC FAILED (exit $rc):"
+        cat "$tmp/dbc_err.txt"
+        failed=$((failed + 1))
+    else
+        echo "test_decode: $f DBC refused ok: $(cat "$tmp/dbc_err.txt")"
+    fi
+done
 "$dec" --frobnicate >/dev/null 2>&1
 rc=$?
 [ "$rc" -eq 3 ] && echo "test_decode: usage error ok" ||
