@@ -45,8 +45,8 @@ GNUPLOT_STAMP := $(BUILD)/.gnuplot-ok
 DRIVE_FLAGS := --vehicles 5 --position 1 --gap-m 10 --set-speed-kmh 90 \
                --speed-noise-kmh 0.05 --pitch-noise-deg 0.02 --seed 1
 
-CAPTURE_SRC := sim_host/capture.c sim_host/bus_ref.c sim_host/ref_model.c
-CAPTURE_HDR := sim_host/capture.h sim_host/bus_ref.h sim_host/ref_model.h
+CAPTURE_SRC := sim_host/capture.c sim_host/canlog.c sim_host/bus_ref.c sim_host/ref_model.c
+CAPTURE_HDR := sim_host/capture.h sim_host/canlog.h sim_host/bus_ref.h sim_host/ref_model.h
 
 .PHONY: run run-sim drive-logs logs test-drive-logs test-run-host test-record-vm
 
@@ -155,9 +155,9 @@ $(HOSTSAN)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(FW_SRC) -lm
 
-$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/capture.c sim_host/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/capture.c sim_host/canlog.c sim_host/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/capture.c $(FW_SRC) -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/capture.c sim_host/canlog.c $(FW_SRC) -lm
 
 test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
         $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP)
