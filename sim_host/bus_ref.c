@@ -88,6 +88,16 @@ uint64_t bus_ref_tick(bus_ref_t *r)
     return t;
 }
 
+uint64_t bus_ref_skip_to(bus_ref_t *r, uint64_t t_us)
+{
+    if (!r->started || (t_us <= r->next_tick_us)) {
+        return 0U;
+    }
+    const uint64_t n = (t_us - r->next_tick_us) / BUS_REF_TICK_US;
+    r->next_tick_us += n * BUS_REF_TICK_US;
+    return n;
+}
+
 void bus_ref_advance(bus_ref_t *r, uint64_t t_us)
 {
     while (bus_ref_due(r, t_us)) {

@@ -75,6 +75,13 @@ void bus_ref_advance(bus_ref_t *r, uint64_t t_us);
 bool bus_ref_due(bus_ref_t *r, uint64_t t_us);
 uint64_t bus_ref_tick(bus_ref_t *r);
 
+/* Crosses a silence in one jump: the next tick moves on by a whole number
+ * of ticks to the last one at or before t_us, none of them stepped (the
+ * inputs are stale by then, as the module's are when pfe_ecu_replay skips
+ * the same silence, hal/replay/hal_replay_ecu.h). Returns the ticks
+ * skipped (0 before the clock started or when t_us is not ahead). */
+uint64_t bus_ref_skip_to(bus_ref_t *r, uint64_t t_us);
+
 /* Takes one input frame received at t_us; call bus_ref_advance(r, t_us)
  * first. */
 void bus_ref_input(bus_ref_t *r, const pfe_can_frame_t *f, uint64_t t_us);

@@ -1576,6 +1576,15 @@ int canlog_next(canlog_reader_t *r, canlog_frame_t *out)
                 }
                 return rc;
             }
+            if ((fmt == (int)CANLOG_FMT_AUTO) && looks_binary(line, len)) {
+                /* a NUL first looks like a blank line: it is not text */
+                r->saw_content = true;
+                rc = fail(r, CANLOG_E_BINARY, "control characters or NUL bytes in the line");
+                if (r->mode == CANLOG_ON_ERROR_SKIP) {
+                    continue;
+                }
+                return rc;
+            }
             if (fmt == (int)CANLOG_FMT_AUTO) {
                 (void)note_dropcount(r, skip_blanks(line));
                 r->comments++;
@@ -1614,6 +1623,14 @@ int canlog_next(canlog_reader_t *r, canlog_frame_t *out)
             r->frames++;
             memcpy(out, f, sizeof *out);
             return 1;
+        }
+        if ((rc > 0) && looks_binary(line, len)) {
+            r->saw_content = true;
+            rc = fail(r, CANLOG_E_BINARY, "control characters or NUL bytes in the line");
+            if (r->mode == CANLOG_ON_ERROR_SKIP) {
+                continue;
+            }
+            return rc;
         }
         if (rc > 0) {
             r->comments++;

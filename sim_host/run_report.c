@@ -64,12 +64,16 @@
 #include "../firmware/pfe_codec.h"
 #include "bus_ref.h"
 #include "capture.h"
+#include "hal/replay/hal_replay_ecu.h"
 
 extern char **environ;
 
 #define PI 3.14159265358979323846
 #define L_S_TO_L_H 3600.0
 #define SPEED_GAP_MAX_US 1000000U   /* longer without CCVS1: no distance counted */
+/* A silence pfe_ecu_replay crosses in one jump (hal/replay/hal_replay_ecu.h). */
+#define REPLAY_TAIL_US ((uint64_t)HAL_REPLAY_ECU_TAIL_US)
+#define REPLAY_GAP_US ((uint64_t)HAL_REPLAY_ECU_GAP_US)
 #define MAX_EXPECT 64U
 #define PATH_MAX_LEN 4096U
 
@@ -548,8 +552,56 @@ static void gp_quoted(FILE *f, const char *s)
     fputc('\'', f);
 }
 
+/* What the CSV holds, for a plot of what is there: values per column
+ * (speed, grade, module rate, reference rate, module total, reference
+ * total) and the span of its times. */
+#define CSV_COLS 6
+typedef struct {
+    size_t have[CSV_COLS];
+    size_t rows;
+    double t_first, t_last;
+} plot_data_t;
+
+static void plot_note(plot_data_t *pd, double t_s, const bool have[CSV_COLS])
+{
+    if (pd->rows == 0U) {
+        pd->t_first = t_s;
+    }
+    pd->t_last = t_s;
+    pd->rows++;
+    for (int c = 0; c < CSV_COLS; c++) {
+        pd->have[c] += have[c] ? 1U : 0U;
+    }
+}
+
+/* One panel: the curves whose column has values; a panel with none says
+ * so instead (gnuplot stops on a plot with no point: "x range is
+ * invalid"). */
+static void plot_panel(FILE *f, const plot_data_t *pd, const char *ylabel, int n,
+                       const int cols[], const char *const styles[], const char *none)
+{
+    fprintf(f, "set ylabel '%s'\n", ylabel);
+    bool any = false;
+    for (int k = 0; k < n; k++) {
+        any = any || (pd->have[cols[k] - 2] > 0U);
+    }
+    if (!any) {
+        fprintf(f, "set label 1 '%s' at graph 0.5, 0.5 center\nset yrange [0:1]\nunset key\n"
+                   "plot 2 notitle\nunset label 1\nset autoscale y\nset key\n", none);
+        return;
+    }
+    const char *sep = "plot ";
+    for (int k = 0; k < n; k++) {
+        if (pd->have[cols[k] - 2] > 0U) {
+            fprintf(f, "%scsv skip 1 using 1:%d %s", sep, cols[k], styles[k]);
+            sep = ", \\\n     ";
+        }
+    }
+    fprintf(f, "\n");
+}
+
 static int write_plot_script(const char *gp_path, const char *csv_path, const char *png_path,
-                             const char *title)
+                             const char *title, const plot_data_t *pd)
 {
     FILE *f = fopen(gp_path, "w");
     if (f == NULL) {
@@ -561,22 +613,35 @@ static int write_plot_script(const char *gp_path, const char *csv_path, const ch
     gp_quoted(f, png_path);
     fprintf(f, "\nset datafile separator ','\nset datafile missing 'NA'\n");
     fprintf(f, "set grid\nset key top right opaque box\nset lmargin 12\nset xlabel 'time (s)'\n");
+    /* an explicit time range: one row, or none with values, is a range too */
+    const double span = pd->t_last - pd->t_first;
+    fprintf(f, "set xrange [%.3f:%.3f]\n", (span > 0.0) ? pd->t_first : (pd->t_first - 1.0),
+            (span > 0.0) ? pd->t_last : (pd->t_last + 1.0));
     fprintf(f, "set multiplot layout 4,1 title ");
     gp_quoted(f, title);
     fprintf(f, " font 'sans,12'\ncsv = ");
     gp_quoted(f, csv_path);
-    fprintf(f, "\n"
-               "set ylabel 'speed (km/h)'\n"
-               "plot csv skip 1 using 1:2 with lines lw 1.5 lc rgb '#1f77b4' title 'CCVS1 wheel-based speed (input)'\n"
-               "set ylabel 'grade (%%)'\n"
-               "plot csv skip 1 using 1:3 with lines lw 1.2 lc rgb '#2ca02c' title 'SSI road grade, tan(pitch) (input)'\n"
-               "set ylabel 'fuel rate (L/h)'\n"
-               "plot csv skip 1 using 1:4 with lines lw 2.5 lc rgb '#d62728' title 'module (LFE1)', \\\n"
-               "     csv skip 1 using 1:5 with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference (double precision)'\n"
-               "set ylabel 'fuel used (L)'\n"
-               "plot csv skip 1 using 1:6 with steps lw 2.5 lc rgb '#d62728' title 'module (HRLFC total)', \\\n"
-               "     csv skip 1 using 1:7 with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference'\n"
-               "unset multiplot\n");
+    fprintf(f, "\n");
+    static const int speed[] = {2};
+    static const char *const speed_st[] = {
+        "with lines lw 1.5 lc rgb '#1f77b4' title 'CCVS1 wheel-based speed (input)'"};
+    plot_panel(f, pd, "speed (km/h)", 1, speed, speed_st, "no valid CCVS1 speed in the capture");
+    static const int grade[] = {3};
+    static const char *const grade_st[] = {
+        "with lines lw 1.2 lc rgb '#2ca02c' title 'SSI road grade, tan(pitch) (input)'"};
+    plot_panel(f, pd, "grade (%)", 1, grade, grade_st, "no SSI pitch in the capture");
+    static const int rate[] = {4, 5};
+    static const char *const rate_st[] = {
+        "with lines lw 2.5 lc rgb '#d62728' title 'module (own truck)'",
+        "with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference (double precision)'"};
+    plot_panel(f, pd, "fuel rate (L/h)", 2, rate, rate_st,
+               "no fuel rate: neither the module nor the reference has one");
+    static const int used[] = {6, 7};
+    static const char *const used_st[] = {
+        "with steps lw 2.5 lc rgb '#d62728' title 'module (own truck total)'",
+        "with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference'"};
+    plot_panel(f, pd, "fuel used (L)", 2, used, used_st, "no fuel total from the module");
+    fprintf(f, "unset multiplot\n");
     return close_out(f, gp_path);
 }
 
@@ -673,8 +738,10 @@ typedef struct {
 } state_t;
 
 typedef struct {
-    tick_t *ticks;                  /* owned */
+    tick_t *ticks;                  /* owned: the ticks some record asks for */
     size_t n_ticks;
+    size_t gaps_skipped;            /* silences crossed in one jump */
+    uint64_t ticks_skipped;
     state_t *states;                /* owned, one per input frame */
     size_t n_states;
     unsigned n_vehicles, position, reconfigurations;
@@ -697,11 +764,39 @@ static int grow(void **p, size_t *room, size_t n, size_t size)
     return 0;
 }
 
+/* Stores tick tt of ref when a capture record is waiting for it: the
+ * first tick at or after each record's time is all the analysis asks for
+ * (tick_at()), so the ticks kept are at most the records, whatever the
+ * capture's time span. *pending: the first record not yet given a tick. */
+static int keep_tick(const capture_t *cap, const bus_ref_t *ref, uint64_t tt, size_t *pending,
+                     ref_run_t *run, size_t *room)
+{
+    if ((*pending >= cap->n) || (cap->recs[*pending].t_us > tt)) {
+        return 0;
+    }
+    while ((*pending < cap->n) && (cap->recs[*pending].t_us <= tt)) {
+        (*pending)++;
+    }
+    if (grow((void **)&run->ticks, room, run->n_ticks, sizeof(tick_t)) != 0) {
+        return -1;
+    }
+    tick_t *t = &run->ticks[run->n_ticks++];
+    t->t_us = tt;
+    t->own_used = bus_ref_own_used(ref);
+    t->platoon_used = bus_ref_platoon_used(ref);
+    return 0;
+}
+
 /*
- * The reference over the capture's inputs (sim_host/bus_ref.h): its ticks,
- * for fuel used, and after every input frame what a module tick at that
- * instant would answer (bus_ref_peek()), to match the module's rates
- * whatever its tick phase. Runs until 20 ms after the capture's last frame.
+ * The reference over the capture's inputs (sim_host/bus_ref.h): fuel used
+ * at the first tick at or after each record, and after every input frame
+ * what a module tick at that instant would answer (bus_ref_peek()), to
+ * match the module's rates whatever its tick phase. Runs until 20 ms after
+ * the capture's last frame. A silence of more than REPLAY_GAP_US
+ * (HAL_REPLAY_ECU_TAIL_US + HAL_REPLAY_ECU_GAP_US) without any frame is
+ * crossed in one jump to REPLAY_TAIL_US before the next frame, as
+ * pfe_ecu_replay crosses it (a logger whose clock jumps by years must not
+ * be ticked through): time and memory follow the frames, not the span.
  * Returns 0, or -1 out of memory.
  */
 static int ref_run(const capture_t *cap, const options_t *o, ref_run_t *run)
@@ -712,31 +807,32 @@ static int ref_run(const capture_t *cap, const options_t *o, ref_run_t *run)
                      (uint32_t)lround(o->gap_m * 1000.0)) != 0) {
         return -1;
     }
-    size_t room_t = 0U, room_s = 0U;
+    size_t room_t = 0U, room_s = 0U, pending = 0U;
     bool started = false;
     const uint64_t end_us = cap->recs[cap->n - 1U].t_us + (2U * BUS_REF_TICK_US);
     for (size_t k = 0U; k <= cap->n; k++) {
         const bool last = k == cap->n;
-        if (!last && (pfe_j1939_source(cap->recs[k].f.id) == o->module_sa)) {
-            continue;
+        const bool input = !last && (pfe_j1939_source(cap->recs[k].f.id) != o->module_sa);
+        if (!started && !input) {
+            if (last) {
+                break;
+            }
+            continue; /* the module's frames before the first input */
         }
         const uint64_t t_us = last ? end_us : cap->recs[k].t_us;
-        if (!started && last) {
-            break;
-        }
         started = true;
+        if (ref.started && (t_us > ref.next_tick_us + REPLAY_TAIL_US + REPLAY_GAP_US)) {
+            run->ticks_skipped += bus_ref_skip_to(&ref, t_us - REPLAY_TAIL_US);
+            run->gaps_skipped++;
+        }
         while (bus_ref_due(&ref, t_us)) {
             const uint64_t tt = bus_ref_tick(&ref);
-            if (grow((void **)&run->ticks, &room_t, run->n_ticks, sizeof(tick_t)) != 0) {
+            if (keep_tick(cap, &ref, tt, &pending, run, &room_t) != 0) {
                 return -1;
             }
-            tick_t *t = &run->ticks[run->n_ticks++];
-            t->t_us = tt;
-            t->own_used = bus_ref_own_used(&ref);
-            t->platoon_used = bus_ref_platoon_used(&ref);
         }
-        if (last) {
-            break;
+        if (!input) {
+            continue; /* a module frame: the clock moved on to it */
         }
         bus_ref_input(&ref, &cap->recs[k].f, t_us);
         if (grow((void **)&run->states, &room_s, run->n_states, sizeof(state_t)) != 0) {
@@ -910,6 +1006,7 @@ typedef struct {
     size_t rate_frames, rate_disturbed; /* LFE1 and PFE_PlatoonFuel after warm-up */
     size_t input_events, overrun_events;
     size_t csv_rows;
+    plot_data_t plot;               /* what the CSV holds */
     size_t n_in, n_mod;
     uint64_t t_first_in, t_last_in;
     double distance_m;
@@ -1043,15 +1140,18 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
                 }
             }
             if (have_tick && (r->t_us <= a->t_last_in)) {
+                const bool have[CSV_COLS] = {have_speed, have_grade, valid, run->states[st].valid,
+                                             a->own_total.have, a->own_total.have};
                 fprintf(csv, "%.3f", t_s);
-                csv_value(csv, have_speed, speed_kmh, 3);
-                csv_value(csv, have_grade, grade_pct, 4);
-                csv_value(csv, valid, got * L_S_TO_L_H, 2);
-                csv_value(csv, run->states[st].valid, run->states[st].own_rate * L_S_TO_L_H, 3);
-                csv_value(csv, a->own_total.have, a->own_total.last - a->own_total.first, 3);
-                csv_value(csv, a->own_total.have, own_used - a->own_total.ref_first, 5);
+                csv_value(csv, have[0], speed_kmh, 3);
+                csv_value(csv, have[1], grade_pct, 4);
+                csv_value(csv, have[2], got * L_S_TO_L_H, 2);
+                csv_value(csv, have[3], run->states[st].own_rate * L_S_TO_L_H, 3);
+                csv_value(csv, have[4], a->own_total.last - a->own_total.first, 3);
+                csv_value(csv, have[5], own_used - a->own_total.ref_first, 5);
                 fputc('\n', csv);
                 a->csv_rows++;
+                plot_note(&a->plot, t_s, have);
             }
         }
     }
@@ -1278,7 +1378,7 @@ int main(int argc, char **argv)
         snprintf(title, sizeof title, "%s: %.2f km, %.0f s; module (0x%02lX) against the reference",
                  (o.title != NULL) ? o.title : ((base != NULL) ? base + 1 : o.capture),
                  g_q[Q_DISTANCE].value, g_q[Q_DURATION].value, o.module_sa);
-        if ((write_plot_script(gp_path, csv_path, png_path, title) != 0) ||
+        if ((write_plot_script(gp_path, csv_path, png_path, title, &a.plot) != 0) ||
             (run_gnuplot(o.gnuplot, gp_path) != 0)) {
             rc = -1;
         } else {

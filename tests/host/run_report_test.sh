@@ -131,10 +131,10 @@ bad_capture() {
     head -n 4 "$out/right.log" >"$out/bad.log"
     echo "(1700000001.000000) vcan0 18FEF100#FF0G5AFFFFFFFFFF" >>"$out/bad.log"
     runs 2 "$report" "$out/bad.log" --out "$out/bad/report" --no-plot &&
-        has "$out/last.err" "bad.log:5: bad hex digit 'G' in the data" || return 1
+        has "$out/last.err" "bad.log:5: bad hex: 'G' in the data" || return 1
     printf '\0\1\2' >"$out/binary.log"
     runs 2 "$report" "$out/binary.log" --out "$out/bad/report" --no-plot &&
-        has "$out/last.err" "binary.log:1: NUL byte: not a text log"
+        has "$out/last.err" "binary.log:1: binary content"
 }
 
 not_measured() {
