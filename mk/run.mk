@@ -160,11 +160,11 @@ $(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/capture.c sim_host/can
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/capture.c sim_host/canlog.c $(FW_SRC) -lm
 
 test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
-        $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP)
+        $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP) $(HOST)/run_report
 	@echo "== host: test_capture"; $(HOSTSAN)/test_capture
 	@echo "== host: run_report on the firmware ECU run offline"
 	@sh tests/host/run_report_test.sh $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
-	    $(LOG_DIR)/hilly.log $(BUILD)/run-report-test
+	    $(LOG_DIR)/hilly.log $(BUILD)/run-report-test $(HOST)/run_report
 
 # The recorder in the VM, next to candump -L, on every kind of frame.
 RECORD_PAYLOAD := $(BUILD)/record-vm

@@ -83,7 +83,7 @@ enum {
     Q_DURATION, Q_DISTANCE, Q_MEAN_SPEED, Q_INPUT_FRAMES, Q_MODULE_FRAMES, Q_LFE1, Q_LFE1_NA,
     Q_MAX_RATE_PCT, Q_MAX_RATE_LH, Q_MAX_PRATE_PCT, Q_MAX_PRATE_LH, Q_TOTAL, Q_REF_TOTAL,
     Q_TOTAL_ERR, Q_PTOTAL, Q_REF_PTOTAL, Q_PTOTAL_ERR, Q_OVERRUNS, Q_RX_DROPPED, Q_TX_DROPPED,
-    Q_NORMAL_PCT, Q_CAPTURE_DROPPED, Q_INPUT_EVENTS, Q_DISTURBED_PCT, Q_COUNT
+    Q_NORMAL_PCT, Q_CAPTURE_DROPPED, Q_INPUT_EVENTS, Q_DISTURBED_PCT, Q_GAPS, Q_COUNT
 };
 
 typedef struct {
@@ -137,6 +137,8 @@ static quantity_t g_q[Q_COUNT] = {
     [Q_DISTURBED_PCT] = {"rate_frames_disturbed_pct",
                          "LFE1 and PFE_PlatoonFuel not judged: 2 s after an input timing event "
                          "or 5 lost module ticks, %", 0.0, false, NULL},
+    [Q_GAPS] = {"gaps_skipped", "silences over 11 s the reference crossed in one jump "
+                "(as pfe_ecu_replay does)", 0.0, false, NULL},
 };
 
 static void set_q(int k, double v)
@@ -1158,8 +1160,9 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
     free(dist.spans);
 }
 
-static void set_quantities(const analysis_t *a, const capture_t *cap)
+static void set_quantities(const analysis_t *a, const capture_t *cap, const ref_run_t *run)
 {
+    set_q(Q_GAPS, (double)run->gaps_skipped);
     set_q(Q_INPUT_FRAMES, (double)a->n_in);
     set_q(Q_MODULE_FRAMES, (double)a->n_mod);
     set_q(Q_CAPTURE_DROPPED, (double)cap->dropped);
@@ -1264,6 +1267,11 @@ static void print_summary(const options_t *o, const capture_t *cap, const analys
         printf("; the recorder dropped %lu", cap->dropped);
     }
     printf("\n");
+    if (ref->gaps_skipped > 0U) {
+        printf("  %zu silence%s of over %.0f s crossed in one jump (%llu ticks, as pfe_ecu_replay "
+               "skips them)\n", ref->gaps_skipped, (ref->gaps_skipped == 1U) ? "" : "s",
+               (double)(REPLAY_TAIL_US + REPLAY_GAP_US) / 1e6, (unsigned long long)ref->ticks_skipped);
+    }
     printf("  platoon %u truck%s, own position %u, gap %.2f m (%s)\n", ref->n_vehicles,
            (ref->n_vehicles == 1U) ? "" : "s", ref->position, ref->gap_mm / 1000.0,
            ref->configured ? "from PFE_PlatoonConfig" : "default: no PFE_PlatoonConfig");
@@ -1349,7 +1357,7 @@ int main(int argc, char **argv)
     static analysis_t a;
     analyse(&cap, &o, &run, csv, &a);
     int rc = close_out(csv, csv_path);
-    set_quantities(&a, &cap);
+    set_quantities(&a, &cap, &run);
     print_summary(&o, &cap, &a, &run);
     capture_free(&cap);
     free(run.ticks);

@@ -3,7 +3,11 @@
 # in simulated time on the first 30 s of the bundled hilly drive
 # (tests/host/ecu_offline.c), right and deliberately wrong.
 #
-#   tests/host/run_report_test.sh RUN_REPORT ECU_OFFLINE HILLY.log OUT_DIR
+#   tests/host/run_report_test.sh RUN_REPORT ECU_OFFLINE HILLY.log OUT_DIR [RUN_REPORT_PLAIN]
+#
+# RUN_REPORT_PLAIN, a build without sanitizers (whose shadow memory no
+# address-space limit allows), runs the capture whose clock jumps by
+# 200,000,000 s under `ulimit -v` and `timeout`.
 #
 # Checks: a right module passes its expectations (exit 0, JUnit without
 # failures, CSV, metrics and PNG written), whatever its tick phase; a module
@@ -18,6 +22,7 @@ report=$1
 offline=$2
 hilly=$3
 out=$4
+plain=${5:-}
 rm -rf "$out"
 mkdir -p "$out"
 failed=0
@@ -146,6 +151,22 @@ not_measured() {
         has "$out/silent/junit.xml" 'failures="1"'
 }
 
+# A logger that starts at one time and then gets its clock: 200,000,000 s
+# (6.3 years) between two frames. The reference crosses the silence in one
+# jump as pfe_ecu_replay does: 400 MB of address space and 60 s suffice
+# (ticking across it stored 1.7 GB within 20 s).
+time_jump() {
+    awk '{ t = substr($1, 2, 17); if (t >= "1700000015.000000") {
+               s = substr(t, 1, 10) + 200000000; $1 = "(" s substr(t, 11) ")" } print }' \
+        "$out/right.log" >"$out/jump.log"
+    runs 0 sh -c "ulimit -v 400000 && exec timeout 60 \"$plain\" \"$out/jump.log\" \
+        --out \"$out/jump/report\" --no-plot" || return 1
+    has "$out/last.out" "1 silence of over 11 s crossed in one jump" &&
+        has "$out/jump/report.metrics" '^gaps_skipped 1$' &&
+        has "$out/jump/report.metrics" '^duration_s 2e+08$' &&
+        has "$out/jump/report.metrics" '^distance_km 0.74'
+}
+
 check right_module right_module
 check other_phase other_phase
 check wrong_module wrong_module
@@ -153,5 +174,8 @@ check input_gap input_gap
 check bad_expectations bad_expectations
 check bad_capture bad_capture
 check not_measured not_measured
+if [ -n "$plain" ]; then
+    check time_jump time_jump
+fi
 echo "run_report_test: $failed check(s) failed"
 exit "$failed"
