@@ -38,10 +38,12 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "pfe_altgrade.h"
 #include "pfe_calib.h"
 #include "pfe_can.h"
 #include "pfe_codec.h"
 #include "pfe_estimator.h"
+#include "pfe_input.h"
 #include "pfe_nvm.h"
 #include "pfe_platoon.h"
 #include "pfe_predict.h"
@@ -56,6 +58,15 @@
 #define PFE_ECU_PREDICT_PERIOD_US 1000000U /* a new prediction from the current position */
 #define PFE_ECU_PREDICT_MAX_AGE_US 3000000U /* an older prediction is sent as not available */
 #define PFE_ECU_DEFAULT_SET_SPEED_MM_S 25000 /* 90 km/h, until PFE_PlatoonConfig gives one */
+#define PFE_ECU_RECLAIM_MIN_US 1000000U /* an address conflict re-claims at most once a second */
+
+/* Whether the module sends LFE1 and HRLFC, the PGNs the engine itself sends
+ * (its own-truck estimate always goes out as PFE_OwnFuel). */
+typedef enum {
+    PFE_ECU_J1939_FUEL_AUTO = 0,       /* each only while no other node sends it (can_dbc/pfe.dbc) */
+    PFE_ECU_J1939_FUEL_ALWAYS = 1,     /* a truck without fuel reporting of its own */
+    PFE_ECU_J1939_FUEL_NEVER = 2
+} pfe_ecu_j1939_fuel_t;
 
 /* What the module is and how it starts. */
 typedef struct {
@@ -74,6 +85,16 @@ typedef struct {
      * one (0: PFE_ECU_DEFAULT_SET_SPEED_MM_S). */
     const pfe_cruise_calib_t *cruise;
     int32_t default_set_speed_mm_s;
+    /* The truck the module runs on (NULL: vehicle) and, by platoon position
+     * (0 = lead), the others (NULL entries: vehicle). CVW's mass replaces
+     * the own truck's mass while it is valid (pfe_ecu_own_calib()). */
+    const pfe_vehicle_calib_t *own_vehicle;
+    const pfe_vehicle_calib_t *vehicle_at[PFE_MAX_VEHICLES];
+    /* A real bus (docs/j1939.md); zero is the default of each. */
+    bool input_source_fixed[PFE_IN_COUNT]; /* the calibration names the sender of an input */
+    uint8_t input_source[PFE_IN_COUNT];    /* that sender's source address */
+    bool flat_grade_forbidden;         /* no grade source: no estimate (else the road is assumed flat) */
+    pfe_ecu_j1939_fuel_t j1939_fuel;
 } pfe_ecu_config_t;
 
 /* Input states in PFE_Status (can_dbc/pfe.dbc VAL_). */
@@ -93,6 +114,25 @@ typedef struct {
     bool seen;
 } pfe_ecu_input_t;
 
+/* The CAN controller as a HAL backend sees it (pfe_ecu_note_bus_state()). */
+typedef struct {
+    uint32_t rx_overruns;              /* frames the controller's receive FIFOs lost, saturating */
+    uint32_t bus_off_events;           /* times the controller went bus-off, saturating */
+    uint8_t tx_error_counter;          /* TEC, 0 .. 255 */
+    uint8_t rx_error_counter;          /* REC, 0 .. 255 */
+    bool error_warning;
+    bool error_passive;
+    bool bus_off;
+} pfe_ecu_bus_state_t;
+
+/* Cause of the last reset, as the HAL reads it at start (PFE_DeviceStatus ResetCause). */
+typedef enum {
+    PFE_RESET_POWER_ON = 0,
+    PFE_RESET_WATCHDOG = 1,
+    PFE_RESET_SOFTWARE = 2,
+    PFE_RESET_OTHER = 3
+} pfe_reset_cause_t;
+
 /* Counters that only count up (saturating). */
 typedef struct {
     uint32_t rx_frames;
@@ -103,6 +143,7 @@ typedef struct {
     uint32_t overruns;                 /* ticks the main loop reported late */
     uint32_t requests_answered;
     uint32_t claims_lost;
+    uint32_t nvm_write_failures;       /* saves the main loop reported failed */
 } pfe_ecu_counters_t;
 
 typedef struct {
@@ -119,13 +160,29 @@ typedef struct {
     bool claim_pending;                /* send our Address Claimed on the next tick */
     uint32_t request_pending;          /* bit per output message asked for by a request */
     bool cannot_claim_pending;         /* answer with "cannot claim" (source 254) */
-    /* inputs */
-    pfe_ecu_input_t speed;
-    pfe_ecu_input_t grade;
+    /* inputs: arbitrated and checked (pfe_input.h) */
+    pfe_input_t in[PFE_IN_COUNT];
+    bool speed_fresh;                  /* a new accepted speed since the last tick */
+    uint32_t conflicts;                /* frames from another node with our address, and claims of it */
+    uint64_t reclaim_us;               /* last re-claim after a conflict */
+    bool reclaimed;
+    /* grade source chain: SSI pitch, else VDS altitude over distance, else flat */
+    pfe_altgrade_t altgrade;
+    uint64_t odometer_um;              /* distance travelled, from the speed in use */
+    uint8_t grade_source;              /* PFE_GRADE_SOURCE_* of the last tick */
+    /* the own truck's model */
+    pfe_vehicle_calib_t own_calib;     /* in use: calibration, mass from CVW */
+    uint8_t mass_source;               /* PFE_MASS_SOURCE_* */
+    /* other nodes' LFE1 and HRLFC: the module does not shadow them */
+    uint64_t other_lfe1_us;
+    uint64_t other_hrlfc_us;
+    bool other_lfe1_seen;
+    bool other_hrlfc_seen;
+    uint64_t start_us;
     pfe_ecu_input_t config;
     pfe_ecu_input_t preview;
-    int32_t speed_mm_s;
-    int32_t grade_ppm;
+    int32_t speed_mm_s;                /* speed in use (valid when in[PFE_IN_SPEED] is) */
+    int32_t grade_ppm;                 /* grade in use (valid when grade_source < NONE) */
     bool grade_saturated;              /* the last pitch was beyond +-PFE_GRADE_MAX_PPM */
     pfe_msg_platoon_config_t platoon_msg;
     pfe_preview_t preview_buf;
@@ -150,6 +207,12 @@ typedef struct {
     uint32_t nvm_sequence;
     int nvm_last_slot;
     uint32_t outputs_clamped;          /* bit per output whose last frame the codec clamped */
+    bool nvm_failing;                  /* the last save failed (PFE_DeviceStatus NvmWriteFailing) */
+    /* device health from the HAL (PFE_DeviceStatus); not available until reported */
+    pfe_ecu_bus_state_t bus;
+    bool bus_known;
+    pfe_reset_cause_t reset_cause;
+    bool reset_cause_known;
     pfe_ecu_counters_t count;
 } pfe_ecu_t;
 
@@ -158,7 +221,7 @@ typedef struct {
  * J1939 PGN with priority and source masked, and for the PDU1 PGNs
  * (request, address claimed) the destination too. A HAL that installs them
  * keeps other traffic from costing the ECU anything. */
-#define PFE_ECU_RX_FILTERS 6U
+#define PFE_ECU_RX_FILTERS 10U
 typedef struct {
     uint32_t id;
     uint32_t mask;
@@ -186,6 +249,12 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
 void pfe_ecu_note_overrun(pfe_ecu_t *ecu, uint32_t ticks);
 void pfe_ecu_note_tx_dropped(pfe_ecu_t *ecu, uint32_t frames);
 void pfe_ecu_note_rx_dropped(pfe_ecu_t *ecu, uint32_t frames);
+/* The CAN controller's state, from a backend that has one (sent in
+ * PFE_DeviceStatus; its signals are not available until the first call). */
+void pfe_ecu_note_bus_state(pfe_ecu_t *ecu, const pfe_ecu_bus_state_t *bus);
+/* Cause of the last reset, once after pfe_ecu_init() (a cause outside the
+ * enumeration is taken as PFE_RESET_OTHER). */
+void pfe_ecu_note_reset_cause(pfe_ecu_t *ecu, pfe_reset_cause_t cause);
 
 /* NVM: due once per save interval. pfe_ecu_nvm_take() fills the record to
  * write to pfe_ecu_nvm_slot() and restarts the interval. */

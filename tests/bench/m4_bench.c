@@ -166,9 +166,19 @@ static uint64_t ecu_tick(uint64_t now_us, const pfe_can_frame_t *rx, uint32_t n_
 
 static int bench_ecu(void)
 {
-    const pfe_ecu_config_t cfg = {PFE_ECU_DEFAULT_ADDRESS, 0x80A0000000000001ULL, 10000U,
-                                  &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
-                                  5U, 0U, 10000U, &pfe_default_cruise, 25000};
+    const pfe_ecu_config_t cfg = {
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = 0x80A0000000000001ULL,
+        .save_interval_ms = 10000U,
+        .vehicle = &pfe_default_vehicle,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = 5U,
+        .default_position = 0U,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = 25000,
+    };
     uint64_t now = 1000000U;
     if (pfe_ecu_init(&s_ecu, &cfg, NULL, -1, now) != PFE_OK) {
         return -1;
@@ -306,9 +316,19 @@ static int bench_predict(void)
 
     /* The ECU receiving the preview (ten frames a tick with the drive's) and
      * predicting over it, 5 trucks. */
-    const pfe_ecu_config_t cfg = {PFE_ECU_DEFAULT_ADDRESS, 0x80A0000000000001ULL, 10000U,
-                                  &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
-                                  5U, 0U, 10000U, &pfe_default_cruise, 25000};
+    const pfe_ecu_config_t cfg = {
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = 0x80A0000000000001ULL,
+        .save_interval_ms = 10000U,
+        .vehicle = &pfe_default_vehicle,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = 5U,
+        .default_position = 0U,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = 25000,
+    };
     uint64_t now = 1000000U;
     if (pfe_ecu_init(&s_ecu, &cfg, NULL, -1, now) != PFE_OK) {
         return -1;

@@ -128,8 +128,10 @@ static void test_message_table(void **state)
     } expected[PFE_MSG_COUNT] = {
         {65265U, 8U, 100U, 0U, 1U},   {61459U, 8U, 10U, 1U, 3U},    {65280U, 8U, 1000U, 4U, 5U},
         {65281U, 8U, 0U, 9U, 8U},     {65266U, 8U, 100U, 17U, 1U},  {65282U, 8U, 100U, 18U, 2U},
-        {64777U, 8U, 1000U, 20U, 2U}, {65283U, 8U, 1000U, 22U, 4U}, {65284U, 8U, 1000U, 26U, 12U},
-        {60928U, 8U, 0U, 38U, 10U},   {59904U, 3U, 0U, 48U, 1U},
+        {64777U, 8U, 1000U, 20U, 2U}, {65283U, 8U, 1000U, 22U, 4U}, {65284U, 8U, 1000U, 26U, 14U},
+        {60928U, 8U, 0U, 40U, 10U},   {59904U, 3U, 0U, 50U, 1U},    {65256U, 8U, 100U, 51U, 4U},
+        {65136U, 8U, 0U, 55U, 2U},    {65285U, 8U, 100U, 57U, 3U},  {65286U, 8U, 1000U, 60U, 9U},
+        {65287U, 8U, 1000U, 69U, 10U},
     };
     uint32_t covered = 0U;
     for (uint32_t m = 0U; m < (uint32_t)PFE_MSG_COUNT; m++) {
@@ -147,7 +149,7 @@ static void test_message_table(void **state)
         }
     }
     assert_int_equal(covered, PFE_CODEC_SIGNAL_COUNT);
-    assert_int_equal(pfe_codec_signal_count, 49);
+    assert_int_equal(pfe_codec_signal_count, 79);
 }
 
 /* Signals of one message never share a bit unless they belong to different
@@ -236,6 +238,8 @@ static const sig_case_t sig_cases[PFE_CODEC_SIGNAL_COUNT] = {
     {PFE_CSIG_ST_SPEED_CLAMPED, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
     {PFE_CSIG_ST_GRADE_CLAMPED, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
     {PFE_CSIG_ST_OUTPUT_SATURATED, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_ST_INPUTS_REJECTED, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_ST_ADDRESS_CONFLICTS, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
     {PFE_CSIG_AC_IDENTITY_NUMBER, 0x1FFFFFUL, OK_, false, OOR, 0x1FFFFFUL, OK_, 0x1FFFFFUL, OK_},
     {PFE_CSIG_AC_MANUFACTURER_CODE, 0x7FFU, OK_, false, OOR, 0x7FFU, OK_, 0x7FFU, OK_},
     {PFE_CSIG_AC_ECU_INSTANCE, 7U, OK_, false, OOR, 7U, OK_, 7U, OK_},
@@ -247,6 +251,34 @@ static const sig_case_t sig_cases[PFE_CODEC_SIGNAL_COUNT] = {
     {PFE_CSIG_AC_INDUSTRY_GROUP, 7U, OK_, false, OOR, 7U, OK_, 7U, OK_},
     {PFE_CSIG_AC_ARBITRARY_ADDRESS_CAPABLE, 1U, OK_, false, OOR, 1U, OK_, 1U, OK_},
     {PFE_CSIG_RQST_REQUESTED_PGN, 0x3FFFFUL, OK_, true, OOR, 0xFFFFFFUL, OOR, 0xFFFFFFUL, OOR},
+    {PFE_CSIG_VDS_COMPASS_BEARING, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_VDS_NAV_SPEED, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_VDS_PITCH, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_VDS_ALTITUDE, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_OF_OWN_FUEL_RATE, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_OF_OWN_TOTAL_FUEL_USED, 0xFAFFFFFFUL, OK_, true, OOR, 0xFFFFFFFFUL, NA, 0xFEFFFFFFUL, ERR},
+    {PFE_CSIG_OF_MODEL_IDENTIFIED, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_IS_SPEED_SOURCE, 253U, OK_, true, OOR, 0xFFU, OOR, 0xFFU, OOR},
+    {PFE_CSIG_IS_GRADE_SOURCE_ADDRESS, 253U, OK_, true, OOR, 0xFFU, OOR, 0xFFU, OOR},
+    {PFE_CSIG_IS_FUEL_RATE_SOURCE, 253U, OK_, true, OOR, 0xFFU, OOR, 0xFFU, OOR},
+    {PFE_CSIG_IS_SPEED_SENDERS, 15U, OK_, false, OOR, 15U, OK_, 15U, OK_},
+    {PFE_CSIG_IS_GRADE_SENDERS, 15U, OK_, false, OOR, 15U, OK_, 15U, OK_},
+    {PFE_CSIG_IS_GRADE_SOURCE, 3U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_IS_MASS_SOURCE, 2U, OK_, true, OOR, 15U, OOR, 15U, OOR},
+    {PFE_CSIG_IS_IDENTIFICATION_STATE, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_IS_VEHICLE_MASS, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_DS_RX_FIFO_OVERRUNS, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_DS_BUS_OFF_EVENTS, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_DS_ERROR_WARNING, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_DS_ERROR_PASSIVE, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_DS_BUS_OFF, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_DS_NVM_WRITE_FAILING, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_DS_RESET_CAUSE, 3U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_DS_TX_ERROR_COUNTER, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_DS_RX_ERROR_COUNTER, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_DS_NVM_WRITE_FAILURES, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
 };
 
 static void test_every_signal_boundaries_and_codes(void **state)
@@ -1385,12 +1417,14 @@ static void test_status(void **state)
     pfe_can_frame_t f = poisoned_frame();
     pfe_msg_status_t in = {
         OK_, NA, ERR, OOR, {PFE_MODE_DEGRADED, OK_}, {3U, OK_}, {0U, OK_}, {250U, OK_},
-        {1U, OK_}, {0U, OK_}, {0U, NA}, {0U, OK_},
+        {1U, OK_}, {0U, OK_}, {0U, NA}, {0U, OK_}, {7U, OK_}, {0U, NA},
     };
     assert_int_equal(pfe_codec_encode_status(&f, &in, 0x8CU), 0);
     assert_int_equal(f.id, 0x98FF048CUL);
-    /* byte 1: 01 (preview out of range) 10 (config error) 11 (grade n/a) 00 (speed valid) */
-    assert_payload(&f, 0x6C, 0x01, 0x03, 0x00, 0xFA, 0x31, 0xFF, 0xFF);
+    /* byte 1: 01 (preview out of range) 10 (config error) 11 (grade n/a) 00 (speed valid);
+     * byte 7: 7 inputs rejected; byte 8: conflicts not available */
+    assert_payload(&f, 0x6C, 0x01, 0x03, 0x00, 0xFA, 0x31, 0x07, 0xFF);
+    in.inputs_rejected.state = NA;
     /* counters hold at 250 (bits 5..7), mode 3 clamps to 2 (bit 4), flag 2 clamps to 1 (bit 8) */
     in.rx_frames_dropped.value = 251U;
     in.tick_overruns.value = 100000U;
@@ -1408,7 +1442,7 @@ static void test_status(void **state)
     assert_int_equal(pfe_codec_encode_status(&f, &in, 0x8CU), PFE_EINVAL);
 
     pfe_msg_status_t m;
-    f = frame8(0x98FF048CUL, 0x6C, 0x01, 0x03, 0x00, 0xFA, 0x31, 0xFF, 0xFF);
+    f = frame8(0x98FF048CUL, 0x6C, 0x01, 0x03, 0x00, 0xFA, 0x31, 0x07, 0xFB);
     memset(&m, 0xA5, sizeof m);
     assert_int_equal(pfe_codec_decode_status(&f, &m), PFE_OK);
     assert_int_equal(m.speed_input, OK_);
@@ -1423,6 +1457,8 @@ static void test_status(void **state)
     assert_int_equal(m.speed_clamped.value, 0);
     assert_int_equal(m.grade_clamped.state, NA);
     assert_int_equal(m.output_saturated.state, OK_);
+    assert_int_equal(m.inputs_rejected.value, 7);
+    assert_int_equal(m.address_conflicts.state, OOR); /* 0xFB: above 250 */
     f = frame8(0x98FF048CUL, 0x00, 0x03, 0xFB, 0xFE, 0xFF, 0x0E, 0xFF, 0xFF);
     assert_int_equal(pfe_codec_decode_status(&f, &m), PFE_OK);
     assert_int_equal(m.mode.state, OOR);
