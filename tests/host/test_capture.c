@@ -382,10 +382,64 @@ static void test_bus_ref_flat(void **state)
     assert_true(bus_ref_peek(&r, 3000003U, &own, &platoon));
     assert_true(fabs(own * 3600.0 - 33.4707) < 0.005);
     assert_int_equal(r.ticks, ticks);
-    /* The SSI stops: 30 ms later the estimate is not valid. */
+    /* The SSI stops: 30 ms later the road is assumed flat, as the module
+     * assumes it; the CCVS1 stops too: 300 ms later no estimate. */
     bus_ref_advance(&r, 3000003U + 40000U);
+    assert_true(r.grade_flat);
+    assert_true(bus_ref_valid(&r));
+    assert_true(fabs(bus_ref_own_rate(&r) * 3600.0 - 33.4707) < 0.005);
+    bus_ref_advance(&r, 2900003U + 310000U);
     assert_false(bus_ref_valid(&r));
     assert_true(bus_ref_own_rate(&r) == 0.0);
+}
+
+static void frame_ccvs1_from(pfe_can_frame_t *f, int32_t speed_mm_s, pfe_sig_state_t st, uint8_t sa)
+{
+    const pfe_msg_ccvs1_t m = {{speed_mm_s, st}};
+    assert_true(pfe_codec_encode_ccvs1(f, &m, sa) >= 0);
+}
+
+/* Two senders of CCVS1, one not available: the reference locks onto the
+ * valid one, as the module does; a slope sensor in error is no flat road. */
+static void test_bus_ref_senders_and_flat(void **state)
+{
+    (void)state;
+    static bus_ref_t r;
+    assert_int_equal(bus_ref_init(&r, 1U, 0U, 10000U), 0);
+    pfe_can_frame_t f;
+    for (unsigned t = 0U; t < 3000U; t += 100U) {
+        const uint64_t now = 1000000U + (t * 1000U);
+        bus_ref_advance(&r, now);
+        frame_ccvs1_from(&f, 25000, PFE_SIG_VALID, 0x00U);
+        bus_ref_input(&r, &f, now);
+        frame_ccvs1_from(&f, 0, PFE_SIG_NOT_AVAILABLE, 0x31U);
+        bus_ref_input(&r, &f, now + 4000U);
+    }
+    bus_ref_advance(&r, 4000000U);
+    assert_true(r.speed_arb.locked);
+    assert_int_equal(r.speed_arb.sa, 0x00);
+    assert_true(r.grade_flat);
+    assert_true(bus_ref_valid(&r));
+    /* no SSI at all: 90 km/h on a road assumed flat, 33.4707 L/h as above */
+    assert_true(fabs(bus_ref_own_rate(&r) * 3600.0 - 33.4707) < 0.005);
+    /* the engine stops; the cab controller's valid speed takes over after
+     * three periods (300 ms) without a valid value from the engine */
+    for (unsigned t = 0U; t < 1000U; t += 100U) {
+        const uint64_t now = 4000000U + (t * 1000U);
+        bus_ref_advance(&r, now);
+        frame_ccvs1_from(&f, 20000, PFE_SIG_VALID, 0x31U);
+        bus_ref_input(&r, &f, now + 4000U);
+    }
+    assert_int_equal(r.speed_arb.sa, 0x31);
+    assert_true(fabs(r.speed_m_s - 20.0) < 1e-9);
+    /* a slope sensor sending error: no flat road, no estimate */
+    const pfe_msg_ssi_t e = {{0, PFE_SIG_ERROR}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_ssi(&f, &e, 0x00U) >= 0);
+    bus_ref_advance(&r, 5000000U);
+    bus_ref_input(&r, &f, 5000000U);
+    bus_ref_advance(&r, 5020000U);
+    assert_false(r.grade_flat);
+    assert_false(bus_ref_valid(&r));
 }
 
 static void test_bus_ref_platoon_config(void **state)
@@ -486,6 +540,7 @@ int main(void)
         cmocka_unit_test(test_load_errors),
         cmocka_unit_test(test_load_printed_form),
         cmocka_unit_test(test_bus_ref_flat),
+        cmocka_unit_test(test_bus_ref_senders_and_flat),
         cmocka_unit_test(test_bus_ref_platoon_config),
         cmocka_unit_test(test_noise_splitmix64),
         cmocka_unit_test(test_noise_gauss),
