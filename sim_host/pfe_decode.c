@@ -46,7 +46,8 @@
  * message matches, remote and error frames are not in the CSV.
  *
  * A summary on standard error: frames read, decoded, not matched, parse
- * errors. Exit status: 0; 1 unreadable DBC or log, or a bad line (without
+ * errors. Exit status: 0; 1 unreadable DBC or log, a DBC without a message
+ * (an empty file: nothing to decode with), or a bad line (without
  * --skip-errors: decoding stops there); 3 usage error.
  */
 #define _POSIX_C_SOURCE 200809L

@@ -1311,13 +1311,12 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
         const double own_used = (tk != NULL) ? tk->own_used : 0.0;
         const double platoon_used = (tk != NULL) ? tk->platoon_used : 0.0;
         const bool judged = have_tick && (r->t_us >= warm_us) && (r->t_us <= a->t_last_in);
+        /* the own truck's figures: PFE_OwnFuel, else LFE1 and HRLFC */
         own_sample_t own;
         if (own_sample(&r->f, a->own_src, &own) && own.total_valid) {
             totals_note(&a->own_total, own.total_l, own_used);
         }
-        if (false) {
-            /* the own truck's total: above, from PFE_OwnFuel or HRLFC */
-        } else if (pgn == PFE_PGN_PLATOON_FUEL) {
+        if (pgn == PFE_PGN_PLATOON_FUEL) {
             pfe_msg_platoon_fuel_t m;
             if (pfe_codec_decode_platoon_fuel(&r->f, &m) >= 0) {
                 if (m.fuel_used_ul.state == PFE_SIG_VALID) {

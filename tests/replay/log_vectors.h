@@ -73,6 +73,7 @@ LOG_VECTOR("DROPCOUNT: dropped 3 CAN frames on 'can0' socket (total drops 3)", L
            0U, "")
 /* errors */
 LOG_VECTOR("garbage", LV_BAD, 0ULL, 0UL, 0U, "")
+LOG_VECTOR("\x01\x02\x03", LV_BAD, 0ULL, 0UL, 0U, "")
 LOG_VECTOR("(1.5) can0 123#11", LV_BAD, 0ULL, 0UL, 0U, "")
 LOG_VECTOR("(1.000000) can0 123#1G", LV_BAD, 0ULL, 0UL, 0U, "")
 LOG_VECTOR("(1.000000) can0 123#112", LV_BAD, 0ULL, 0UL, 0U, "")
