@@ -157,18 +157,29 @@ static size_t token_end(const char *s, size_t i, size_t n)
     return k;
 }
 
+/* Whether the len characters at a are those of b (no memcmp: MISRA 21.14). */
+static bool same_chars(const char *a, const char *b, size_t len)
+{
+    for (size_t k = 0U; k < len; k++) {
+        if (a[k] != b[k]) {
+            return false;
+        }
+    }
+    return true;
+}
+
 /* Whether the token at i (up to a blank or the end) is word. */
 static bool token_is(const char *s, size_t i, size_t n, const char *word)
 {
     const size_t len = strlen(word);
-    return ((i + len) <= n) && (memcmp(&s[i], word, len) == 0) &&
+    return ((i + len) <= n) && same_chars(&s[i], word, len) &&
            (((i + len) == n) || is_blank(s[i + len]));
 }
 
 static bool starts_with(const char *s, size_t i, size_t n, const char *prefix)
 {
     const size_t len = strlen(prefix);
-    return ((i + len) <= n) && (memcmp(&s[i], prefix, len) == 0);
+    return ((i + len) <= n) && same_chars(&s[i], prefix, len);
 }
 
 /* count decimal digits at s[*i] into *v; false if any is missing. */
