@@ -10,6 +10,9 @@
 #               same first bad line named)
 #   printed.txt the drive in candump's printed form (-t z, an error frame,
 #               -e's detail line): identical records, the drive's frames
+#   truck.txt   a bench's printed log of a truck (two CCVS1 senders, no SSI,
+#               the engine's LFE1, 200 unread PGNs): identical records,
+#               own-truck rates sent
 #   PLATOON_LOG a whole bundled road (5 trucks from PFE_PlatoonConfig, grade
 #               previews, sensor noise): identical records, judged by
 #               ecu_check, and predictions sent with values
@@ -104,6 +107,17 @@ else
     cat "$out/printed.m4.summary"
     fail=1
 fi
+# A bench's log as recorded on a truck (tests/host/data/two_senders.txt
+# without the module's own frames): printed form, mid-drive, two CCVS1
+# senders (one not available), no SSI, the engine's LFE1, 200 PGNs the
+# module does not read. Identical on both, and the own-truck estimate
+# (PFE_OwnFuel, 18FF058C) sent with values on a road assumed flat.
+grep -v '^([0-9.]*)  vcan0  ......8C ' "$root/tests/host/data/two_senders.txt" > "$out/truck.txt"
+run_both truck "$out/truck.txt" || { echo "replay truck: failed"; fail=1; }
+n_own=$(grep -c ' 18FF058C#' "$out/truck.m4.log")
+n_own_valid=$(grep ' 18FF058C#' "$out/truck.m4.log" | grep -vc '#FFFF')
+echo "replay truck: $n_own PFE_OwnFuel sent, $n_own_valid with a rate"
+[ "$n_own_valid" -gt $((n_own * 3 / 4)) ] || { echo "replay truck: too few own-truck rates"; fail=1; }
 if [ -n "$platoon" ]; then
     run_both platoon "$platoon" || { echo "replay platoon: failed"; fail=1; }
     "$tools/ecu_check" "$out/platoon.m4.log" || fail=1
