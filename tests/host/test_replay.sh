@@ -238,6 +238,18 @@ if [ -n "$ecu_replay" ]; then
     else
         bad "pfe_ecu_replay: printed -t z"; cat "$tmp/err" "$tmp/sum_tz.txt"; cmp "$tmp/rec_log_z.log" "$tmp/rec_tz.log"
     fi
+    # -t d: the time since the frame before, read with --format printed-delta
+    awk '{ t = substr($1, 2, length($1) - 2) - 1700000000; us = int(t * 1000000 + 0.5);
+           d = (NR == 1) ? 0 : us - prev; prev = us;
+           sub(/^\([0-9]+\.[0-9]+\)/, sprintf("(%03d.%06d)", int(d / 1000000), d % 1000000)); print }' \
+        "$tmp/drive_ta.txt" >"$tmp/drive_td.txt"
+    "$ecu_replay" --log "$tmp/drive_td.txt" --format printed-delta --record "$tmp/rec_td.log" \
+        >/dev/null 2>"$tmp/err"
+    if cmp -s "$tmp/rec_tz.log" "$tmp/rec_td.log"; then
+        ok "pfe_ecu_replay: printed -t d with --format printed-delta, the -t z record"
+    else
+        bad "pfe_ecu_replay: printed -t d"; cat "$tmp/err"; head -n 3 "$tmp/drive_td.txt"
+    fi
     # -t A: 1700000000 s is 2023-11-14 22:13:20 UTC; the drive lasts a minute
     awk '{ t = substr($1, 2, length($1) - 2) - 1700000000; s = int(t); us = int((t - s) * 1000000 + 0.5);
            m = 13 + int((20 + s) / 60); sec = (20 + s) % 60;
