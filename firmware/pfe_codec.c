@@ -1362,7 +1362,8 @@ int pfe_codec_encode_request(pfe_can_frame_t *frame, uint32_t pgn, uint8_t desti
 
 static int32_t mdeg_of_raw128(uint32_t raw)          /* 1/128 deg = 125/16 mdeg, rounded */
 {
-    return (int32_t)(((raw * 125U) + 8U) / 16U);     /* raw <= 0xFAFF: below 2^23 */
+    const uint32_t mdeg = ((raw * 125U) + 8U) / 16U; /* raw <= 0xFAFF: below 2^23 */
+    return (int32_t)mdeg;
 }
 
 static pfe_sig_i32_t dec_i32_affine(const pfe_can_frame_t *frame, pfe_sig_index_t i,
@@ -1376,7 +1377,8 @@ static pfe_sig_i32_t dec_i32_affine(const pfe_can_frame_t *frame, pfe_sig_index_
 
 static int32_t mm_of_raw_altitude(uint32_t raw)      /* 0.125 m = 125 mm */
 {
-    return (int32_t)(raw * 125U);                    /* raw <= 0xFAFF: below 2^23 */
+    const uint32_t mm = raw * 125U; /* raw <= 0xFAFF: below 2^23 */
+    return (int32_t)mm;
 }
 
 int pfe_codec_decode_vds(const pfe_can_frame_t *frame, pfe_msg_vds_t *out)

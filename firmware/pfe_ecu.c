@@ -626,8 +626,10 @@ static int encode_fuel_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f
         const pfe_msg_hrlfc_t m = {{0U, PFE_SIG_NOT_AVAILABLE}, sig_u64(pfe_ecu_own_fuel_ul(ecu))};
         r = pfe_codec_encode_hrlfc(f, &m, sa);
     } else if (which == OUT_OWN_FUEL) {
-        const pfe_msg_own_fuel_t m = {own_rate(ecu), sig_u64(pfe_ecu_own_fuel_ul(ecu)),
-                                      sig_u32(0U, true)};
+        pfe_msg_own_fuel_t m;
+        m.fuel_rate_nl_s = own_rate(ecu);
+        m.fuel_used_ul = sig_u64(pfe_ecu_own_fuel_ul(ecu));
+        m.model_identified = sig_u32(0U, true);
         r = pfe_codec_encode_own_fuel(f, &m, sa);
     } else {
         const pfe_predict_result_t *p = pfe_predict_result(&ecu->predict);

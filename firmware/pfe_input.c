@@ -17,7 +17,7 @@ const pfe_input_rule_t pfe_input_rules[PFE_IN_COUNT] = {
     /* CVW gross combination weight, kg: the calibration's range */
     [PFE_IN_MASS] = {PFE_PGN_CVW, 1000000U, (int32_t)PFE_MASS_MIN_KG, (int32_t)PFE_MASS_MAX_KG, 0U, 0U},
     /* LFE1 engine fuel rate, nL/s: 0 .. 250 L/h */
-    [PFE_IN_ENGINE_FUEL] = {PFE_PGN_LFE1, 100000U, 0, 69444, 0U, 0U},
+    [PFE_IN_ENGINE_FUEL] = {PFE_PGN_LFE1, 100000U, 0, 69444444, 0U, 0U},
 };
 
 void pfe_input_init(pfe_input_t *in, pfe_input_kind_t kind, uint8_t fixed_source)
@@ -47,8 +47,16 @@ static void note_sender(pfe_input_t *in, uint8_t source)
     }
 }
 
-/* Step 1: is the frame the input's? */
-static bool arbitrate(pfe_input_t *in, uint8_t source, pfe_sig_state_t state, uint64_t rx_us)
+static bool in_range(const pfe_input_t *in, int32_t value)
+{
+    const pfe_input_rule_t *r = &pfe_input_rules[in->kind];
+    return (value >= r->min) && (value <= r->max);
+}
+
+/* Step 1: is the frame the input's? A new sender is taken only with a
+ * valid value inside the plausible range. */
+static bool arbitrate(pfe_input_t *in, uint8_t source, pfe_sig_state_t state, int32_t value,
+                      uint64_t rx_us)
 {
     if (in->fixed) {
         return source == in->locked;
@@ -58,7 +66,7 @@ static bool arbitrate(pfe_input_t *in, uint8_t source, pfe_sig_state_t state, ui
     }
     const bool none = in->locked == PFE_INPUT_NO_SOURCE;
     const bool stale = none || ((rx_us - in->locked_valid_us) > stale_us(in));
-    if ((state == PFE_SIG_VALID) && stale) {
+    if ((state == PFE_SIG_VALID) && stale && in_range(in, value)) {
         /* a new sender: its value has no rate reference from the old one */
         in->locked = source;
         in->have_ref = false;
@@ -79,7 +87,7 @@ typedef enum { PLAUSIBLE, OUT_OF_RANGE, TOO_FAST } plausibility_t;
 static plausibility_t plausible(const pfe_input_t *in, int32_t value, uint64_t rx_us)
 {
     const pfe_input_rule_t *r = &pfe_input_rules[in->kind];
-    if ((value < r->min) || (value > r->max)) {
+    if (!in_range(in, value)) {
         return OUT_OF_RANGE;
     }
     if (!in->have_ref || (r->max_rate_per_s == 0U)) {
@@ -114,8 +122,10 @@ static pfe_input_verdict_t take_valid(pfe_input_t *in, int32_t value, uint64_t r
              * this frame when only its change was too fast. */
             in->rx_us = rx_us;
             in->have_ref = p == TOO_FAST;
-            in->confirm_left = (uint8_t)((p == TOO_FAST) ? (PFE_INPUT_CONFIRM_FRAMES - 1U)
-                                                         : PFE_INPUT_CONFIRM_FRAMES);
+            in->confirm_left = (uint8_t)PFE_INPUT_CONFIRM_FRAMES;
+            if (p == TOO_FAST) {
+                in->confirm_left = (uint8_t)(PFE_INPUT_CONFIRM_FRAMES - 1U);
+            }
             in->last_value = value;
             in->last_us = rx_us;
         } else if (in->rejects_in_row >= PFE_INPUT_REJECTS_TO_ERROR) {
@@ -154,7 +164,7 @@ pfe_input_verdict_t pfe_input_take(pfe_input_t *in, uint8_t source, pfe_sig_stat
                                    int32_t value, uint64_t rx_us)
 {
     note_sender(in, source);
-    if (!arbitrate(in, source, state, rx_us)) {
+    if (!arbitrate(in, source, state, value, rx_us)) {
         return PFE_INPUT_IGNORED;
     }
     if (state == PFE_SIG_VALID) {

@@ -10,7 +10,8 @@
  *
  * 1. Sender arbitration. A calibration may name the input's source address
  *    (fixed: frames from every other sender are ignored). Otherwise the
- *    input locks onto the first sender whose value is valid, and moves to
+ *    input locks onto the first sender whose value is valid (and inside the
+ *    plausible range of step 2), and moves to
  *    another sender only when the locked one has sent no valid value for
  *    PFE_INPUT_STALE_PERIODS periods or has just sent "error". A value that
  *    is not available or error from any sender but the locked one never

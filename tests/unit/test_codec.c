@@ -1411,6 +1411,125 @@ static void test_fuel_prediction(void **state)
     assert_int_equal(m.time_ms.state, NA);
 }
 
+/* ------------------------------------------------------------ real-bus inputs and outputs */
+
+/* VDS: altitude 100 m = (100 + 2500) / 0.125 = raw 20800 = 0x5140 in bytes
+ * 7-8; bearing 90 deg = raw 11520 = 0x2D00; pitch 0 = raw 25600 = 0x6400. */
+static void test_vds(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = poisoned_frame();
+    const pfe_msg_vds_t in = {{90000U, OK_}, {0, NA}, {0, OK_}, {100000, OK_}};
+    assert_int_equal(pfe_codec_encode_vds(&f, &in, 0x1CU), 0);
+    assert_int_equal(f.id, 0x98FEE81CUL);
+    assert_payload(&f, 0x00, 0x2D, 0xFF, 0xFF, 0x00, 0x64, 0x40, 0x51);
+    pfe_msg_vds_t m;
+    memset(&m, 0xA5, sizeof m);
+    assert_int_equal(pfe_codec_decode_vds(&f, &m), PFE_OK);
+    assert_int_equal(m.bearing_mdeg.value, 90000);
+    assert_int_equal(m.nav_speed_mm_s.state, NA);
+    assert_int_equal(m.pitch_mdeg.value, 0);
+    assert_int_equal(m.altitude_mm.value, 100000);
+    /* raw 0: -2500 m; raw 0xFAFF: 5531.875 m; raw 0xFEFF: error */
+    f = frame8(0x98FEE800UL, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x00, 0x00);
+    assert_int_equal(pfe_codec_decode_vds(&f, &m), PFE_OK);
+    assert_int_equal(m.altitude_mm.value, -2500000);
+    f.data[6] = 0xFF;
+    f.data[7] = 0xFA;
+    assert_int_equal(pfe_codec_decode_vds(&f, &m), PFE_OK);
+    assert_int_equal(m.altitude_mm.value, 5531875);
+    f.data[7] = 0xFE;
+    assert_int_equal(pfe_codec_decode_vds(&f, &m), PFE_OK);
+    assert_int_equal(m.altitude_mm.state, ERR);
+    f.dlc = 7U;
+    assert_int_equal(pfe_codec_decode_vds(&f, &m), PFE_CODEC_EDLC);
+}
+
+/* CVW: 12000 kg = raw 1200 = 0x04B0 in bytes 3-4; 8000 kg = 0x0320. */
+static void test_cvw(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = poisoned_frame();
+    const pfe_msg_cvw_t in = {{8000U, OK_}, {12000U, OK_}};
+    assert_int_equal(pfe_codec_encode_cvw(&f, &in, 0x27U), 0);
+    assert_int_equal(f.id, 0x98FE7027UL);
+    assert_payload(&f, 0x20, 0x03, 0xB0, 0x04, 0xFF, 0xFF, 0xFF, 0xFF);
+    pfe_msg_cvw_t m;
+    assert_int_equal(pfe_codec_decode_cvw(&f, &m), PFE_OK);
+    assert_int_equal(m.powered_vehicle_kg.value, 8000);
+    assert_int_equal(m.gross_combination_kg.value, 12000);
+    f.data[3] = 0xFF;
+    assert_int_equal(pfe_codec_decode_cvw(&f, &m), PFE_OK);
+    assert_int_equal(m.gross_combination_kg.state, NA);
+}
+
+/* PFE_OwnFuel: 9291667 nL/s * 9 / 125000 = 669.0 = 0x029D; 1.5 L = 0x05DC;
+ * identified: bits 48-49 = 01, the rest of byte 7 ones = 0xFD. */
+static void test_own_fuel(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = poisoned_frame();
+    const pfe_msg_own_fuel_t in = {{9291667U, OK_}, {1500000U, OK_}, {1U, OK_}};
+    assert_int_equal(pfe_codec_encode_own_fuel(&f, &in, 0x8CU), 0);
+    assert_int_equal(f.id, 0x98FF058CUL);
+    assert_payload(&f, 0x9D, 0x02, 0xDC, 0x05, 0x00, 0x00, 0xFD, 0xFF);
+    pfe_msg_own_fuel_t m;
+    assert_int_equal(pfe_codec_decode_own_fuel(&f, &m), PFE_OK);
+    assert_int_equal(m.fuel_rate_nl_s.value, 9291667);
+    assert_int_equal(m.fuel_used_ul.value, 1500000);
+    assert_int_equal(m.model_identified.value, 1);
+    const pfe_msg_own_fuel_t na = {{0U, NA}, {0U, OK_}, {0U, OK_}};
+    assert_int_equal(pfe_codec_encode_own_fuel(&f, &na, 0x8CU), 0);
+    assert_payload(&f, 0xFF, 0xFF, 0x00, 0x00, 0x00, 0x00, 0xFC, 0xFF);
+}
+
+/* PFE_InputStatus: speed from 0x00, grade from 0x1C, no fuel-rate sender
+ * (0xFF), 2 speed and 1 grade senders (0x12), grade from altitude (1), mass
+ * identified (2) and converged (1): byte 6 = 11 01 0010 = 0xD2; 12000 kg =
+ * 0x04B0. */
+static void test_input_status(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = poisoned_frame();
+    const pfe_msg_input_status_t in = {{0x00U, OK_}, {0x1CU, OK_}, {0U, NA},
+                                       {2U, OK_},    {1U, OK_},    {1U, OK_},
+                                       {2U, OK_},    {1U, OK_},    {12000U, OK_}};
+    assert_int_equal(pfe_codec_encode_input_status(&f, &in, 0x8CU), 0);
+    assert_int_equal(f.id, 0x98FF068CUL);
+    assert_payload(&f, 0x00, 0x1C, 0xFF, 0x12, 0x01, 0xD2, 0xB0, 0x04);
+    pfe_msg_input_status_t m;
+    assert_int_equal(pfe_codec_decode_input_status(&f, &m), PFE_OK);
+    assert_int_equal(m.grade_source_address.value, 0x1C);
+    assert_int_equal(m.fuel_rate_source.state, OOR); /* 255: none */
+    assert_int_equal(m.speed_senders.value, 2);
+    assert_int_equal(m.mass_source.value, 2);
+    assert_int_equal(m.identification.value, 1);
+    assert_int_equal(m.vehicle_mass_kg.value, 12000);
+}
+
+/* PFE_DeviceStatus: 3 overruns, 1 bus-off, warning on, NVM failing: byte 3 =
+ * 01 00 00 01 = 0x41; watchdog reset; TEC 97 = 0x61, REC 5, 2 NVM failures. */
+static void test_device_status(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = poisoned_frame();
+    const pfe_msg_device_status_t in = {{3U, OK_}, {1U, OK_}, {1U, OK_}, {0U, OK_}, {0U, OK_},
+                                        {1U, OK_}, {1U, OK_}, {97U, OK_}, {5U, OK_}, {2U, OK_}};
+    assert_int_equal(pfe_codec_encode_device_status(&f, &in, 0x8CU), 0);
+    assert_int_equal(f.id, 0x98FF078CUL);
+    assert_payload(&f, 0x03, 0x01, 0x41, 0x01, 0x61, 0x05, 0x02, 0xFF);
+    pfe_msg_device_status_t m;
+    assert_int_equal(pfe_codec_decode_device_status(&f, &m), PFE_OK);
+    assert_int_equal(m.tx_error_counter.value, 97);
+    assert_int_equal(m.reset_cause.value, 1);
+    assert_int_equal(m.nvm_write_failing.value, 1);
+    /* counters clamp at 250 and say so */
+    pfe_msg_device_status_t big = in;
+    big.tx_error_counter.value = 255U;
+    assert_int_equal(pfe_codec_encode_device_status(&f, &big, 0x8CU), 1 << 7);
+    assert_int_equal(f.data[4], 0xFA);
+}
+
 static void test_status(void **state)
 {
     (void)state;
@@ -1630,6 +1749,11 @@ int main(void)
         cmocka_unit_test(test_hrlfc),
         cmocka_unit_test(test_fuel_prediction),
         cmocka_unit_test(test_status),
+        cmocka_unit_test(test_vds),
+        cmocka_unit_test(test_cvw),
+        cmocka_unit_test(test_own_fuel),
+        cmocka_unit_test(test_input_status),
+        cmocka_unit_test(test_device_status),
         cmocka_unit_test(test_name_pack_unpack),
         cmocka_unit_test(test_address_claimed),
         cmocka_unit_test(test_request),
