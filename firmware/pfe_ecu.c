@@ -373,20 +373,27 @@ static void on_lfe1(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint8_t sa, uint64
         count_up(&ecu->count.rx_rejected, 1U);
         return;
     }
-    ecu->other_lfe1_us = rx_us;
-    ecu->other_lfe1_seen = true;
+    /* A node that sends LFE1 with the rate "not available" (a cab
+     * controller) reports no fuel rate: only one with a value is shadowed. */
+    if (m.fuel_rate_nl_s.state != PFE_SIG_NOT_AVAILABLE) {
+        ecu->other_lfe1_us = rx_us;
+        ecu->other_lfe1_seen = true;
+    }
     (void)take_input(ecu, PFE_IN_ENGINE_FUEL, sa, m.fuel_rate_nl_s.state,
                      (int32_t)m.fuel_rate_nl_s.value, rx_us);
 }
 
 static void on_hrlfc(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
 {
-    if (f->dlc != 8U) {
+    pfe_msg_hrlfc_t m;
+    if (pfe_codec_decode_hrlfc(f, &m) < 0) {
         count_up(&ecu->count.rx_rejected, 1U);
         return;
     }
-    ecu->other_hrlfc_us = rx_us;
-    ecu->other_hrlfc_seen = true;
+    if (m.total_fuel_ul.state != PFE_SIG_NOT_AVAILABLE) {
+        ecu->other_hrlfc_us = rx_us;
+        ecu->other_hrlfc_seen = true;
+    }
 }
 
 static void on_preview(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)

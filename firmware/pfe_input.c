@@ -12,8 +12,8 @@ const pfe_input_rule_t pfe_input_rules[PFE_IN_COUNT] = {
     [PFE_IN_SPEED] = {PFE_PGN_CCVS1, 100000U, 0, 41667, 10000U, 1000U},
     /* SSI pitch as grade, ppm: +-50 %, 20 %/s + 0.5 % a frame */
     [PFE_IN_GRADE] = {PFE_PGN_SSI, 10000U, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM, 200000U, 5000U},
-    /* VDS altitude, mm: the signal's range, 15 m/s + 10 m a frame */
-    [PFE_IN_ALTITUDE] = {PFE_PGN_VDS, 100000U, -2500000, 5531875, 15000U, 10000U},
+    /* VDS altitude, mm: the signal's range, 15 m/s + 10 m a frame (J1939-71: every 1 s) */
+    [PFE_IN_ALTITUDE] = {PFE_PGN_VDS, 1000000U, -2500000, 5531875, 15000U, 10000U},
     /* CVW gross combination weight, kg: the calibration's range */
     [PFE_IN_MASS] = {PFE_PGN_CVW, 1000000U, (int32_t)PFE_MASS_MIN_KG, (int32_t)PFE_MASS_MAX_KG, 0U, 0U},
     /* LFE1 engine fuel rate, nL/s: 0 .. 250 L/h */
@@ -81,7 +81,7 @@ static uint32_t abs_diff(int32_t a, int32_t b)
     return (uint32_t)((d < 0) ? -d : d);
 }
 
-typedef enum { PLAUSIBLE, OUT_OF_RANGE, TOO_FAST } plausibility_t;
+typedef enum { PLAUSIBLE, OUT_OF_RANGE, TOO_FAST, TOO_EARLY } plausibility_t;
 
 /* Step 2: within range, and within rate * dt + margin of the reference. */
 static plausibility_t plausible(const pfe_input_t *in, int32_t value, uint64_t rx_us)
@@ -94,6 +94,9 @@ static plausibility_t plausible(const pfe_input_t *in, int32_t value, uint64_t r
         return PLAUSIBLE;
     }
     uint64_t dt_us = rx_us - in->last_us;
+    if (dt_us < (r->period_us / 2U)) {
+        return TOO_EARLY; /* a second node with the same address, or a sender gone wild */
+    }
     if (dt_us > stale_us(in)) {
         dt_us = stale_us(in);
     }
@@ -121,9 +124,9 @@ static pfe_input_verdict_t take_valid(pfe_input_t *in, int32_t value, uint64_t r
             /* Still in error, and current: confirmation starts again, from
              * this frame when only its change was too fast. */
             in->rx_us = rx_us;
-            in->have_ref = p == TOO_FAST;
+            in->have_ref = p != OUT_OF_RANGE;
             in->confirm_left = (uint8_t)PFE_INPUT_CONFIRM_FRAMES;
-            if (p == TOO_FAST) {
+            if (p != OUT_OF_RANGE) {
                 in->confirm_left = (uint8_t)(PFE_INPUT_CONFIRM_FRAMES - 1U);
             }
             in->last_value = value;

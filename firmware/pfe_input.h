@@ -22,7 +22,9 @@
  *    (pfe_input_rules[]) gives each input its PGN, period, plausible range
  *    and largest plausible change per second (plus a fixed margin per frame
  *    for quantisation and sensor noise). A value outside the range, or that
- *    moved from the last accepted one by more than rate * dt + margin, is
+ *    moved from the last accepted one by more than rate * dt + margin, or
+ *    that came less than half a period after it (two nodes sending with one
+ *    address, or a sender gone wild: garbage between the real frames), is
  *    rejected and counted; the input keeps its last accepted value, which
  *    ages as usual. PFE_INPUT_REJECTS_TO_ERROR rejections in a row make the
  *    input ERROR (the ECU then sends its fuel outputs not available), and
@@ -41,9 +43,11 @@
  * Grade (SSI pitch, SPN 3318): within the model's +-50 % and a change of at
  * most 20 %/s (a crest's vertical curve of 500 m radius at 25 m/s changes
  * the grade by 5 %/s; body pitch under hard braking by about as much) plus
- * 0.5 % per frame for sensor noise. Altitude (VDS, SPN 580): the signal's
- * range, and a climb of at most 15 m/s (40 m/s at 30 % grade would be 12 m/s)
- * plus 10 m per frame for GNSS jumps. Mass (CVW, SPN 1760): the calibration
+ * 0.5 % per frame for sensor noise. Altitude (VDS, SPN 580, every second in
+ * J1939-71): the signal's range, and a climb of at most 15 m/s (40 m/s at
+ * 30 % grade would be 12 m/s) plus 10 m per frame for GNSS jumps. The rate
+ * and the half-period rule apply to the inputs with a rate only (speed,
+ * grade, altitude). Mass (CVW, SPN 1760): the calibration
  * range PFE_MASS_MIN_KG .. PFE_MASS_MAX_KG, no rate. Engine fuel rate (LFE1,
  * SPN 183): 0 to 250 L/h (a 450 kW engine at full load burns about 110 L/h),
  * no rate (a fuel cut is a step).

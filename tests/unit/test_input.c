@@ -116,6 +116,21 @@ static void test_speed_plausibility(void **state)
     assert_int_equal(g_in.rejects_in_row, 1);
 }
 
+/* Garbage between the real frames from the same address (a second node
+ * using it, or a sender gone wild): a frame less than half a period after
+ * the last accepted one is rejected, whatever it carries. */
+static void test_frames_between_the_real_ones(void **state)
+{
+    (void)state;
+    pfe_input_init(&g_in, PFE_IN_SPEED, PFE_INPUT_NO_SOURCE);
+    assert_int_equal(speed(ENGINE, OK_, 20000, T0), PFE_INPUT_ACCEPTED);
+    assert_int_equal(speed(ENGINE, OK_, 20100, T0 + 49999U), PFE_INPUT_REJECTED);
+    assert_int_equal(speed(ENGINE, OK_, 20000, T0 + P), PFE_INPUT_ACCEPTED);
+    assert_int_equal(speed(ENGINE, OK_, 20000, T0 + P + 50000U), PFE_INPUT_ACCEPTED); /* half a period */
+    assert_int_equal(g_in.rejected, 1);
+    assert_int_equal(g_in.state, OK_);
+}
+
 /* 0 -> 250 km/h in one frame, then garbage: three rejections make the input
  * an error; it takes three agreeing frames to be valid again. */
 static void test_persistent_rejection_is_an_error_until_confirmed(void **state)
@@ -302,6 +317,7 @@ int main(void)
         cmocka_unit_test(test_switches_after_three_periods_or_an_error),
         cmocka_unit_test(test_fixed_sender),
         cmocka_unit_test(test_speed_plausibility),
+        cmocka_unit_test(test_frames_between_the_real_ones),
         cmocka_unit_test(test_persistent_rejection_is_an_error_until_confirmed),
         cmocka_unit_test(test_stale_input_restarts),
         cmocka_unit_test(test_grade_plausibility),
