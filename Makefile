@@ -75,9 +75,12 @@ $(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(D
 # The same firmware over a log in logical time (hal/replay); its twin on the
 # Cortex-M4 is $(M4_OUT)/pfe_ecu_mps2.elf.
 ECU_REPLAY_SRC := $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/replay/hal_replay_ecu.c
-$(HOST)/pfe_ecu_replay: sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+# The host reads the log through sim_host/canlog.c (every form), the image
+# through hal/replay's own parser.
+REPLAY_SOURCE_SRC := sim_host/replay_source.c sim_host/canlog.c
+$(HOST)/pfe_ecu_replay: sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(REPLAY_SOURCE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(TRUCK_CAL_SRC) $(FW_SRC)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(REPLAY_SOURCE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC)
 
 $(HOST)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -126,7 +129,7 @@ $(HOSTSAN)/test_hal_fake: tests/hal/test_hal_fake.c tests/hal/hal_conformance.c 
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
 
 # ... and on the replay backend, with the backend's own tests.
-$(HOSTSAN)/test_hal_replay: tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem.c $(HAL_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/test_hal_replay: tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem.c $(HAL_HDR) tests/replay/log_vectors.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
 
@@ -249,9 +252,9 @@ $(E2E_PAYLOAD)/ecu_vcan.sh: tests/e2e/ecu_vcan.sh
 	@mkdir -p $(@D)
 	cp $< $@
 
-$(E2E_PAYLOAD)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+$(E2E_PAYLOAD)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(FW_SRC)
+	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
 $(E2E_PAYLOAD)/faults.log: $(HOST)/pfe_faults $(E2E_PAYLOAD)/drive.log
 	$(HOST)/pfe_faults inject $(E2E_PAYLOAD)/drive.log $@
 
@@ -290,9 +293,9 @@ e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log fau
 $(HOST)/ecu_check: sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
-$(HOST)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+$(HOST)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(FW_SRC)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
 
 check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_OUT)/pfe_ecu_mps2.elf \
         $(E2E_PAYLOAD)/drive.log $(BUILD)/logs/hilly.log

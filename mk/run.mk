@@ -46,8 +46,8 @@ GNUPLOT_STAMP := $(BUILD)/.gnuplot-ok
 DRIVE_FLAGS := --vehicles 5 --position 1 --gap-m 10 --set-speed-kmh 90 \
                --speed-noise-kmh 0.05 --pitch-noise-deg 0.02 --seed 1
 
-CAPTURE_SRC := sim_host/capture.c sim_host/bus_ref.c sim_host/ref_model.c
-CAPTURE_HDR := sim_host/capture.h sim_host/bus_ref.h sim_host/ref_model.h
+CAPTURE_SRC := sim_host/capture.c sim_host/canlog.c sim_host/bus_ref.c sim_host/ref_model.c
+CAPTURE_HDR := sim_host/capture.h sim_host/canlog.h sim_host/bus_ref.h sim_host/ref_model.h
 # run_report's judge of the prediction (its header lists what it needs)
 PJ_SRC := sim_host/prediction_judge.c
 PJ_HDR := sim_host/prediction_judge.h
@@ -167,16 +167,16 @@ $(HOSTSAN)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(C
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
 
-$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/capture.c sim_host/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/capture.c sim_host/canlog.c sim_host/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/capture.c $(FW_SRC) -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/capture.c sim_host/canlog.c $(FW_SRC) -lm
 
 test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
-        $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP) $(HOST)/drivegen
+        $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP) $(HOST)/drivegen $(HOST)/run_report
 	@echo "== host: test_capture"; $(HOSTSAN)/test_capture
 	@echo "== host: run_report on the firmware ECU run offline"
 	@sh tests/host/run_report_test.sh $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
-	    $(LOG_DIR)/hilly.log $(BUILD)/run-report-test
+	    $(LOG_DIR)/hilly.log $(BUILD)/run-report-test $(HOST)/run_report
 	@echo "== host: run_report's prediction judge on the firmware ECU run offline"
 	@sh tests/host/prediction_judge_test.sh $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
 	    $(HOST)/drivegen $(ROADS)/hilly.csv $(BUILD)/prediction-judge-test

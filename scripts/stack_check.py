@@ -26,8 +26,11 @@ of the --indirect file, which lists its possible targets; every register
 branch (blx rN, bx rN other than lr) in the disassembly must belong to a
 function with such a call (a switch's table branch, adr rX then ldr pc,
 [rX, rY, lsl #2] with the table right after it and every entry inside the
-same function, is a jump within the function, not a call); every function whose address is stored in the
-image (outside the vector table) must be listed as a target. Anything else,
+same function, is a jump within the function, not a call); every function
+whose address is stored in the image (outside the vector table) must be
+listed as a target. A target "!FUNC" says the call's pointer is set only by
+FUNC: the image must not link FUNC (then the pointer stays NULL and the call
+is never made). Anything else,
 and any cycle (recursion), is refused: the bound would not be one.
 
 Exceptions: the vector table is read from the image. The thread starts at
@@ -401,6 +404,12 @@ def main():
         for t in entry["targets"]:
             if t == "@init_array":
                 calls[src].update(init_targets)
+            elif t.startswith("!"):
+                # "!FUNC": the pointer is set only by FUNC; an image without
+                # FUNC leaves it NULL and never makes this call.
+                if t[1:] in funcs:
+                    refusals.append("%s: %s sets the pointer of %s, and the image links it: list "
+                                    "the targets instead" % (entry["where"], t[1:], label))
             elif t in funcs:
                 calls[src].add(t)
             else:
@@ -418,7 +427,7 @@ def main():
     vectors = words(section_bytes(args.elf, ".isr_vector"))
     listed = set(init_targets)
     for e in indirect:
-        listed.update(t for t in e["targets"] if t != "@init_array")
+        listed.update(t for t in e["targets"] if (t != "@init_array") and not t.startswith("!"))
     data_words = []
     for sec in (".rodata", ".data"):
         data_words += words(section_bytes(args.elf, sec))

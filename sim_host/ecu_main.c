@@ -53,6 +53,45 @@ static void sleep_until_us(hal_time_t *clock, uint64_t deadline)
     }
 }
 
+/* What interface IFACE is, said before anything is opened: 0 when the ECU
+ * may send on it (virtual CAN, or real CAN with allow_real); else 2 for a
+ * name that cannot be one, 1 for an interface that is missing or not CAN
+ * or a real bus refused, each with its own message. */
+static int check_iface(const char *iface, bool allow_real)
+{
+    if (iface[0] == '\0') {
+        fprintf(stderr, "pfe_ecu: --iface needs an interface name, e.g. vcan0 (got an empty one)\n");
+        return 2;
+    }
+    const int kind = hal_socketcan_classify(iface);
+    switch (kind) {
+    case HAL_SOCKETCAN_IF_VIRTUAL_CAN:
+        return 0;
+    case HAL_SOCKETCAN_IF_REAL_CAN:
+        if (allow_real) {
+            return 0;
+        }
+        fprintf(stderr, "pfe_ecu: refusing %s: it is a real CAN bus, not a virtual one (vcan, "
+                        "vxcan); sending on a real bus needs --allow-real-bus\n", iface);
+        return 1;
+    case HAL_SOCKETCAN_IF_NOT_CAN:
+        fprintf(stderr, "pfe_ecu: %s is not a CAN interface (the module needs vcan or vxcan; "
+                        "with --allow-real-bus, a CAN bus)\n", iface);
+        return 1;
+    case HAL_ENODEV:
+        fprintf(stderr, "pfe_ecu: no such interface %s (e.g. ip link add dev vcan0 type vcan)\n",
+                iface);
+        return 1;
+    case HAL_EINVAL:
+        fprintf(stderr, "pfe_ecu: '%s' cannot be an interface name (at most 15 characters)\n",
+                iface);
+        return 2;
+    default:
+        fprintf(stderr, "pfe_ecu: cannot ask the kernel what %s is (rtnetlink failed)\n", iface);
+        return 1;
+    }
+}
+
 static void usage(FILE *f)
 {
     fprintf(f, "usage: pfe_ecu --iface IF --nvm FILE [--address SA] [--save-interval-ms MS]\n"
@@ -118,14 +157,18 @@ int main(int argc, char **argv)
         usage(stderr);
         return 2;
     }
+    const int if_rc = check_iface(iface, (flags & HAL_SOCKETCAN_ALLOW_REAL_BUS) != 0U);
+    if (if_rc != 0) {
+        return if_rc;
+    }
     hal_can_t *can = NULL;
     int rc = hal_socketcan_open(&can, iface, flags);
     if (rc != 0) {
         fprintf(stderr, "pfe_ecu: cannot open %s: %s\n", iface,
                 (rc == HAL_EPERM) ? "not a virtual CAN interface; sending on a real bus needs "
                                     "--allow-real-bus"
-                : (rc == HAL_ENODEV) ? "no such CAN interface (or no SocketCAN in this kernel)"
-                                     : "socket error");
+                : (rc == HAL_ENODEV) ? "no SocketCAN in this kernel (socket(PF_CAN) refused)"
+                                     : "socket error (socket, setsockopt or bind failed)");
         return 1;
     }
     hal_nvm_t *nvm = NULL;

@@ -9,6 +9,7 @@
 #include "../firmware/pfe_can.h"
 #include "../firmware/pfe_codec.h"
 #include "bus_ref.h"
+#include "hal/replay/hal_replay_ecu.h"
 
 #define TICK_S 0.01                     /* the module's tick (pfe_ecu.h) */
 #define SPEED_GAP_MAX_US 1000000U       /* longer without CCVS1: no distance counted (as run_report) */
@@ -207,7 +208,13 @@ int prediction_judge_run(const capture_t *cap, uint8_t module_sa, unsigned n_veh
         const double t_s = (rec->t_us >= t0) ? ((double)(rec->t_us - t0) / 1e6) : 0.0;
         const uint32_t pgn = pfe_j1939_pgn(rec->f.id);
         if (!from_module) {
-            /* the reference's platoon fuel used at each of its ticks up to this input */
+            /* the reference's platoon fuel used at each of its ticks up to
+             * this input; a silence crossed in one jump, as run_report and
+             * pfe_ecu_replay cross it (memory by frames, not by time span) */
+            if (ref.started && (rec->t_us > (ref.next_tick_us + (uint64_t)HAL_REPLAY_ECU_TAIL_US +
+                                             (uint64_t)HAL_REPLAY_ECU_GAP_US))) {
+                (void)bus_ref_skip_to(&ref, rec->t_us - (uint64_t)HAL_REPLAY_ECU_TAIL_US);
+            }
             while ((rc == 0) && bus_ref_due(&ref, rec->t_us)) {
                 const uint64_t tt = bus_ref_tick(&ref);
                 const fuel_t f = {(tt >= t0) ? ((double)(tt - t0) / 1e6) : 0.0, bus_ref_platoon_used(&ref)};

@@ -32,6 +32,9 @@
  *                             a mass update (its 64-bit division
  *                             normalised to a 32-bit one)
  *   identify_bench_mass       the mass identified there, kg (seed 40 t)
+ *   ecu_real_bus_inputs_mean / _max  what a steady tick spends on a truck's
+ *                             bus on sender arbitration, plausibility and
+ *                             identification (two senders of CCVS1 and LFE1)
  *   stack_used                deepest stack seen (painted-stack method)
  * Means are over many steps, so their resolution is far below the 40
  * instructions of one reading; a max is a single reading (+-40).
@@ -45,6 +48,7 @@
 #include "firmware/pfe_estimator.h"
 #include "firmware/pfe_fixed.h"
 #include "firmware/pfe_identify.h"
+#include "firmware/pfe_input.h"
 #include "firmware/pfe_platoon.h"
 #include "firmware/pfe_predict.h"
 #include "firmware/pfe_selfcheck.h"
@@ -202,6 +206,62 @@ static int bench_identify(void)
     hal_mps2_write_bench("identify_step_mean", total / IDENTIFY_STEPS, "insn");
     hal_mps2_write_bench("identify_step_max", worst, "insn");
     hal_mps2_write_bench("identify_bench_mass", pfe_identify_mass_kg(&s_id), "kg");
+    return 0;
+}
+
+/* The real-bus work a steady tick adds (firmware/pfe_input.h,
+ * pfe_identify.h), as the ECU does it on a truck's bus: every tick the SSI
+ * pitch arbitrated and checked and the five inputs aged; every 10th tick
+ * the engine's CCVS1 and LFE1 and the cab's "not available" CCVS1 and LFE1
+ * arbitrated and checked, and one identification step. Mean and worst per
+ * tick over INPUT_TICKS ticks. */
+#define INPUT_TICKS 3000U
+static pfe_input_t s_in[PFE_IN_COUNT];
+
+static uint64_t input_tick(uint32_t tick, uint64_t now_us)
+{
+    const pfe_est_input_t in = drive_input(tick);
+    const uint64_t t0 = hal_mps2_icount_now();
+    (void)pfe_input_take(&s_in[PFE_IN_GRADE], 0x00U, PFE_SIG_VALID, in.grade_ppm, now_us);
+    if ((tick % 10U) == 0U) {
+        (void)pfe_input_take(&s_in[PFE_IN_SPEED], 0x00U, PFE_SIG_VALID, in.speed_mm_s, now_us);
+        (void)pfe_input_take(&s_in[PFE_IN_SPEED], 0x31U, PFE_SIG_NOT_AVAILABLE, 0, now_us + 5000U);
+        const uint32_t fuel = 8000000U + ((tick * 7919U) % 4000000U);
+        (void)pfe_input_take(&s_in[PFE_IN_ENGINE_FUEL], 0x00U, PFE_SIG_VALID, (int32_t)fuel, now_us);
+        (void)pfe_input_take(&s_in[PFE_IN_ENGINE_FUEL], 0x31U, PFE_SIG_NOT_AVAILABLE, 0, now_us + 5000U);
+        const pfe_identify_sample_t smp = {now_us, in.speed_mm_s, in.grade_ppm, fuel,
+                                           true, true, true, false};
+        (void)pfe_identify_step(&s_id, &smp);
+    }
+    for (uint32_t k = 0U; k < (uint32_t)PFE_IN_COUNT; k++) {
+        (void)pfe_input_age(&s_in[k], now_us + 5000U);
+    }
+    const uint64_t d = hal_mps2_icount_now() - t0;
+    return (d > HAL_MPS2_ICOUNT_OVERHEAD_INSNS) ? (d - HAL_MPS2_ICOUNT_OVERHEAD_INSNS) : 0U;
+}
+
+static int bench_inputs(void)
+{
+    for (uint32_t k = 0U; k < (uint32_t)PFE_IN_COUNT; k++) {
+        pfe_input_init(&s_in[k], (pfe_input_kind_t)k, PFE_INPUT_NO_SOURCE);
+    }
+    if (pfe_identify_init(&s_id, &pfe_default_vehicle, &pfe_default_env) != PFE_OK) {
+        return -1;
+    }
+    uint64_t total = 0U;
+    uint64_t worst = 0U;
+    uint64_t now = 1000000U;
+    for (uint32_t tick = 0U; tick < INPUT_TICKS; tick++, now += PFE_ECU_TICK_US) {
+        const uint64_t insns = input_tick(tick, now);
+        total += insns;
+        worst = (insns > worst) ? insns : worst;
+    }
+    if ((s_in[PFE_IN_SPEED].state != PFE_SIG_VALID) || (s_in[PFE_IN_SPEED].rejected != 0U)) {
+        return -1; /* the measured path is the steady one: nothing rejected */
+    }
+    sink(pfe_identify_mass_kg(&s_id));
+    hal_mps2_write_bench("ecu_real_bus_inputs_mean", total / INPUT_TICKS, "insn");
+    hal_mps2_write_bench("ecu_real_bus_inputs_max", worst, "insn");
     return 0;
 }
 
@@ -437,7 +497,7 @@ int main(void)
     if ((bench_estimator(5U, "est_step_n5_mean", "est_step_n5_max") != 0) ||
         (bench_estimator(PFE_MAX_VEHICLES, "est_step_n32_mean", "est_step_n32_max") != 0) ||
         (bench_sim() != 0) || (bench_ecu() != 0) || (bench_predict() != 0) ||
-        (bench_identify() != 0)) {
+        (bench_identify() != 0) || (bench_inputs() != 0)) {
         hal_mps2_write_str("bench: failed\n");
         return 1;
     }

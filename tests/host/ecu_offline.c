@@ -59,6 +59,13 @@ static void scale_fuel(pfe_can_frame_t *f, double k)
             m.total_fuel_ul.value = (uint64_t)llround((double)m.total_fuel_ul.value * k);
             (void)pfe_codec_encode_hrlfc(f, &m, sa);
         }
+    } else if (pgn == PFE_PGN_OWN_FUEL) {
+        pfe_msg_own_fuel_t m;
+        if (pfe_codec_decode_own_fuel(f, &m) >= 0) {
+            m.fuel_rate_nl_s.value = (uint32_t)lround(m.fuel_rate_nl_s.value * k);
+            m.fuel_used_ul.value = (uint64_t)llround((double)m.fuel_used_ul.value * k);
+            (void)pfe_codec_encode_own_fuel(f, &m, sa);
+        }
     } else if (pgn == PFE_PGN_PLATOON_FUEL) {
         pfe_msg_platoon_fuel_t m;
         if (pfe_codec_decode_platoon_fuel(f, &m) >= 0) {
