@@ -29,7 +29,7 @@ STM32_ECU_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c $(STM32_HAL_SRC) ha
 STM32_BENCH_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c \
     hal/replay/hal_replay_ecu.c hal/stm32f4/startup.c hal/stm32f4/hal_stm32_board.c \
     hal/stm32f4/hal_stm32_time.c hal/stm32f4/icount_tim2.c hal/stm32f4/main_bench_glue.c \
-    hal/mps2/main_ecu.c hal/mps2/semihost.c
+    hal/mps2/main_ecu.c hal/mps2/calib_default.c hal/mps2/semihost.c
 STM32_QEMU_SRC := $(FW_SRC) $(STM32_HAL_SRC) hal/stm32f4/hal_stm32_tick.c hal/stm32f4/main_qemu.c \
     hal/mps2/main_selfcheck.c hal/mps2/semihost.c $(BUILD)/gen/road_hilly.c
 
