@@ -128,7 +128,7 @@
 #define PFE_ID_ACCEL_MAX_UM_S2 2000000   /* 2 m/s^2 between successive samples */
 #define PFE_ID_SPEED_MARGIN_MM_S 500     /* plus this per sample: speed noise (gating below) */
 #define PFE_ID_SPEED_HALF 3U             /* a boundary speed: the mean of the samples */
-#define PFE_ID_SPEED_AVG (2U * PFE_ID_SPEED_HALF + 1U) /* from 3 before to 3 after it */
+#define PFE_ID_SPEED_AVG ((2U * PFE_ID_SPEED_HALF) + 1U) /* from 3 before to 3 after it */
 #define PFE_ID_FUEL_POWER_MIN_W 20000U   /* eta rho_d fc: 5 L/h at eta 0.4, above idle */
 #define PFE_ID_X_MAX_MW_KG 100000        /* |x| of a window, 100 W/kg */
 #define PFE_ID_AUX_MAX_W 100000U         /* as pfe_calib_check_vehicle */
