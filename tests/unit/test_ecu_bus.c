@@ -18,6 +18,7 @@
 #include "pfe_can.h"
 #include "pfe_codec.h"
 #include "pfe_ecu.h"
+#include "pfe_vehicle.h"
 
 #define ENGINE 0x00U
 #define CAB 0x31U
@@ -425,6 +426,99 @@ static void test_random_payloads(void **state)
     assert_in_range(g_ecu.in[PFE_IN_SPEED].rejected, 50U, 100U);
 }
 
+/* The HAL's reports of the CAN controller and the reset cause go out in
+ * PFE_DeviceStatus; before the first report they are not available. */
+static void test_device_status_reports(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c);
+    const bus_t b = {25000, false, true, false};
+    pfe_msg_device_status_t d;
+    assert_int_equal(pfe_codec_decode_device_status(run_until(&b, PFE_PGN_DEVICE_STATUS, 110U), &d),
+                     PFE_OK);
+    assert_int_equal(d.bus_off.state, PFE_SIG_NOT_AVAILABLE);
+    assert_int_equal(d.reset_cause.state, PFE_SIG_NOT_AVAILABLE);
+    assert_int_equal(d.nvm_write_failing.value, 0);
+    const pfe_ecu_bus_state_t bus = {300U, 2U, 130U, 7U, true, true, false};
+    pfe_ecu_note_bus_state(&g_ecu, &bus);
+    pfe_ecu_note_bus_state(&g_ecu, NULL); /* ignored */
+    pfe_ecu_note_reset_cause(&g_ecu, PFE_RESET_WATCHDOG);
+    assert_int_equal(pfe_codec_decode_device_status(run_until(&b, PFE_PGN_DEVICE_STATUS, 110U), &d),
+                     PFE_OK);
+    assert_int_equal(d.rx_fifo_overruns.value, 250); /* held at 250 */
+    assert_int_equal(d.bus_off_events.value, 2);
+    assert_int_equal(d.error_warning.value, 1);
+    assert_int_equal(d.error_passive.value, 1);
+    assert_int_equal(d.bus_off.value, 0);
+    assert_int_equal(d.tx_error_counter.value, 130);
+    assert_int_equal(d.rx_error_counter.value, 7);
+    assert_int_equal(d.reset_cause.value, PFE_RESET_WATCHDOG);
+    pfe_ecu_note_reset_cause(&g_ecu, (pfe_reset_cause_t)9);
+    assert_int_equal(pfe_codec_decode_device_status(run_until(&b, PFE_PGN_DEVICE_STATUS, 110U), &d),
+                     PFE_OK);
+    assert_int_equal(d.reset_cause.value, PFE_RESET_OTHER);
+}
+
+/* A 12 t truck's engine sends its fuel rate (chapter 3 model of the true
+ * truck) while it drives rolling speeds on the flat; the module, calibrated
+ * for 40 t, identifies the mass, switches its model to it and says so. */
+static void test_identifies_the_truck_from_the_engine(void **state)
+{
+    (void)state;
+    pfe_ecu_config_t c = config();
+    start(&c);
+    pfe_vehicle_calib_t truth = pfe_default_vehicle;
+    truth.mass_kg = 12000U;
+    pfe_vehicle_t veh;
+    assert_int_equal(pfe_vehicle_init(&veh, &truth, &pfe_default_env, 0U), PFE_OK);
+    pfe_grade_accel_t flat;
+    pfe_grade_accel(0, pfe_default_env.gravity_um_s2, &flat);
+    int32_t v = 15000;
+    int32_t a = 400000;
+    bool identified = false;
+    for (uint32_t k = 0U; (k < 40000U) && !identified; k++) { /* up to 400 s */
+        if (((g_now / 10000U) % 10U) == 0U) {
+            v += a / 10000; /* um/s^2 over 100 ms in mm/s */
+            a = (v >= 24000) ? -400000 : ((v <= 14000) ? 400000 : a);
+            ccvs1(ENGINE, PFE_SIG_VALID, v);
+            const int32_t f = pfe_vehicle_fuel_force_n(&veh, v, a, &flat);
+            lfe1(ENGINE, PFE_SIG_VALID, pfe_fuel_rate_nl_s(f, v, veh.power_aux_w, veh.fuel_q20));
+        }
+        ssi(ENGINE, 0);
+        g_ntx = pfe_ecu_tick(&g_ecu, g_now, g_tx, PFE_ECU_TX_MAX);
+        g_now += PFE_ECU_TICK_US;
+        const pfe_can_frame_t *f = sent(PFE_PGN_OWN_FUEL);
+        if (f != NULL) {
+            pfe_msg_own_fuel_t o;
+            assert_int_equal(pfe_codec_decode_own_fuel(f, &o), PFE_OK);
+            identified = o.model_identified.value == 1U;
+        }
+    }
+    assert_true(identified);
+    print_message("identified after %.1f s: %u kg, aux %u W\n",
+                  (double)(g_now - START_US) / 1e6, (unsigned)g_ecu.own_calib.mass_kg,
+                  (unsigned)g_ecu.own_calib.power_aux_w);
+    assert_int_equal(g_ecu.mass_source, PFE_MASS_SOURCE_IDENTIFIED);
+    assert_in_range(g_ecu.own_calib.mass_kg, 10200U, 13800U); /* +-15 % */
+    const bus_t b = {20000, false, true, false};
+    const pfe_msg_input_status_t is = input_status(&b);
+    assert_int_equal(is.mass_source.value, PFE_MASS_SOURCE_IDENTIFIED);
+    assert_int_equal(is.identification.value, 1);
+    assert_int_equal(is.vehicle_mass_kg.value, (g_ecu.own_calib.mass_kg + 5U) / 10U * 10U);
+    /* identification off: the calibration stays, and the state is not available */
+    c.identification_off = true;
+    start(&c);
+    for (uint32_t k = 0U; k < 300U; k++) {
+        if (((g_now / 10000U) % 10U) == 0U) {
+            lfe1(ENGINE, PFE_SIG_VALID, 9000000U);
+        }
+        tick_bus(&b);
+    }
+    assert_int_equal(input_status(&b).identification.state, PFE_SIG_NOT_AVAILABLE);
+    assert_int_equal(g_ecu.own_calib.mass_kg, 40000);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -436,6 +530,8 @@ int main(void)
         cmocka_unit_test(test_own_address_from_another_node),
         cmocka_unit_test(test_speed_jump_is_rejected),
         cmocka_unit_test(test_random_payloads),
+        cmocka_unit_test(test_device_status_reports),
+        cmocka_unit_test(test_identifies_the_truck_from_the_engine),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
