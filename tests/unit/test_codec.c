@@ -1530,6 +1530,36 @@ static void test_device_status(void **state)
     assert_int_equal(f.data[4], 0xFA);
 }
 
+/* The new messages' decoders and encoders refuse NULL and another PGN. */
+static void test_new_messages_refuse_bad_arguments(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = frame8(0x98FEF100UL, 0, 0, 0, 0, 0, 0, 0, 0); /* CCVS1: another PGN */
+    pfe_msg_vds_t vds;
+    pfe_msg_cvw_t cvw;
+    pfe_msg_own_fuel_t of;
+    pfe_msg_input_status_t is;
+    pfe_msg_device_status_t ds;
+    assert_int_equal(pfe_codec_decode_vds(&f, NULL), PFE_EINVAL);
+    assert_int_equal(pfe_codec_decode_cvw(&f, NULL), PFE_EINVAL);
+    assert_int_equal(pfe_codec_decode_own_fuel(&f, NULL), PFE_EINVAL);
+    assert_int_equal(pfe_codec_decode_input_status(&f, NULL), PFE_EINVAL);
+    assert_int_equal(pfe_codec_decode_device_status(&f, NULL), PFE_EINVAL);
+    assert_int_equal(pfe_codec_decode_vds(&f, &vds), PFE_CODEC_EID);
+    assert_int_equal(vds.altitude_mm.state, NA);
+    assert_int_equal(pfe_codec_decode_cvw(&f, &cvw), PFE_CODEC_EID);
+    assert_int_equal(pfe_codec_decode_own_fuel(&f, &of), PFE_CODEC_EID);
+    assert_int_equal(pfe_codec_decode_input_status(&f, &is), PFE_CODEC_EID);
+    assert_int_equal(pfe_codec_decode_device_status(&f, &ds), PFE_CODEC_EID);
+    assert_int_equal(ds.reset_cause.state, NA);
+    assert_int_equal(pfe_codec_encode_vds(&f, NULL, 0U), PFE_EINVAL);
+    assert_int_equal(pfe_codec_encode_cvw(&f, NULL, 0U), PFE_EINVAL);
+    assert_int_equal(pfe_codec_encode_own_fuel(&f, NULL, 0U), PFE_EINVAL);
+    assert_int_equal(pfe_codec_encode_input_status(&f, NULL, 0U), PFE_EINVAL);
+    assert_int_equal(pfe_codec_encode_device_status(&f, NULL, 0U), PFE_EINVAL);
+    assert_int_equal(pfe_codec_encode_vds(NULL, &vds, 0U), PFE_EINVAL);
+}
+
 static void test_status(void **state)
 {
     (void)state;
@@ -1754,6 +1784,7 @@ int main(void)
         cmocka_unit_test(test_own_fuel),
         cmocka_unit_test(test_input_status),
         cmocka_unit_test(test_device_status),
+        cmocka_unit_test(test_new_messages_refuse_bad_arguments),
         cmocka_unit_test(test_name_pack_unpack),
         cmocka_unit_test(test_address_claimed),
         cmocka_unit_test(test_request),

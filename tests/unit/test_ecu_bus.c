@@ -440,6 +440,12 @@ static void test_device_status_reports(void **state)
     assert_int_equal(d.bus_off.state, PFE_SIG_NOT_AVAILABLE);
     assert_int_equal(d.reset_cause.state, PFE_SIG_NOT_AVAILABLE);
     assert_int_equal(d.nvm_write_failing.value, 0);
+    const pfe_ecu_bus_state_t off = {0U, 1U, 255U, 0U, true, true, true};
+    pfe_ecu_note_bus_state(&g_ecu, &off);
+    assert_int_equal(pfe_codec_decode_device_status(run_until(&b, PFE_PGN_DEVICE_STATUS, 110U), &d),
+                     PFE_OK);
+    assert_int_equal(d.bus_off.value, 1);
+    assert_int_equal(d.tx_error_counter.value, 250);
     const pfe_ecu_bus_state_t bus = {300U, 2U, 130U, 7U, true, true, false};
     pfe_ecu_note_bus_state(&g_ecu, &bus);
     pfe_ecu_note_bus_state(&g_ecu, NULL); /* ignored */
@@ -506,6 +512,26 @@ static void test_identifies_the_truck_from_the_engine(void **state)
     assert_int_equal(is.mass_source.value, PFE_MASS_SOURCE_IDENTIFIED);
     assert_int_equal(is.identification.value, 1);
     assert_int_equal(is.vehicle_mass_kg.value, (g_ecu.own_calib.mass_kg + 5U) / 10U * 10U);
+    /* CVW's mass comes first; the identified aux power stays */
+    pfe_can_frame_t cf;
+    const pfe_msg_cvw_t w = {{8000U, PFE_SIG_VALID}, {15000U, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_cvw(&cf, &w, 0x27U) >= 0);
+    put(&cf);
+    for (uint32_t k = 0U; k < 1500U; k++) { /* 15 s more of the engine's LFE1 */
+        if (((g_now / 10000U) % 10U) == 0U) {
+            v += a / 10000;
+            a = (v >= 24000) ? -400000 : ((v <= 14000) ? 400000 : a);
+            ccvs1(ENGINE, PFE_SIG_VALID, v);
+            const int32_t f = pfe_vehicle_fuel_force_n(&veh, v, a, &flat);
+            lfe1(ENGINE, PFE_SIG_VALID, pfe_fuel_rate_nl_s(f, v, veh.power_aux_w, veh.fuel_q20));
+        }
+        ssi(ENGINE, 0);
+        g_ntx = pfe_ecu_tick(&g_ecu, g_now, g_tx, PFE_ECU_TX_MAX);
+        g_now += PFE_ECU_TICK_US;
+    }
+    assert_int_equal(g_ecu.mass_source, PFE_MASS_SOURCE_CVW);
+    assert_int_equal(g_ecu.own_calib.mass_kg, 15000);
+    assert_int_equal(input_status(&b).mass_source.value, PFE_MASS_SOURCE_CVW);
     /* identification off: the calibration stays, and the state is not available */
     c.identification_off = true;
     start(&c);
@@ -517,6 +543,91 @@ static void test_identifies_the_truck_from_the_engine(void **state)
     }
     assert_int_equal(input_status(&b).identification.state, PFE_SIG_NOT_AVAILABLE);
     assert_int_equal(g_ecu.own_calib.mass_kg, 40000);
+    /* on measured grade only: a road assumed flat gives identification nothing */
+    c.identification_off = false;
+    c.identification_needs_grade = true;
+    start(&c);
+    const bus_t no_ssi = {20000, false, false, false};
+    for (uint32_t k = 0U; k < 300U; k++) {
+        if (((g_now / 10000U) % 10U) == 0U) {
+            lfe1(ENGINE, PFE_SIG_VALID, 9000000U);
+        }
+        tick_bus(&no_ssi);
+    }
+    assert_int_equal(pfe_identify_counters(&g_ecu.identify)->samples_used, 0);
+}
+
+/* Frames of the new inputs that cannot be decoded are counted and change
+ * nothing; a platoon's other trucks may have calibrations of their own; a
+ * configuration the module cannot use is refused. */
+static void test_bad_frames_and_configurations(void **state)
+{
+    (void)state;
+    pfe_ecu_config_t c = config();
+    pfe_vehicle_calib_t heavy = pfe_default_vehicle;
+    heavy.mass_kg = 60000U;
+    c.vehicle_at[1] = &heavy;
+    c.default_vehicles = 2U;
+    start(&c);
+    assert_int_equal(g_ecu.platoon.n_vehicles, 2);
+    assert_int_equal(g_ecu.platoon.mass_kg, 100000); /* 40 t own truck + 60 t behind it */
+    const bus_t b = {25000, false, true, false};
+    run(&b, 300U);
+    static const uint32_t pgns[] = {PFE_PGN_VDS, PFE_PGN_CVW, PFE_PGN_LFE1, PFE_PGN_HRLFC,
+                                    PFE_PGN_SSI};
+    const uint32_t before = g_ecu.count.rx_rejected;
+    for (uint32_t k = 0U; k < 5U; k++) {
+        pfe_can_frame_t f;
+        memset(&f, 0xFF, sizeof f);
+        f.id = pfe_j1939_id(6U, pgns[k], PFE_J1939_ADDR_GLOBAL, 0x27U);
+        f.dlc = 5U;
+        put(&f);
+    }
+    run(&b, 1U);
+    assert_int_equal(g_ecu.count.rx_rejected - before, 5);
+    /* VDS with the altitude not available from the sender in use */
+    pfe_can_frame_t f;
+    const pfe_msg_vds_t up = {{0U, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE},
+                              {0, PFE_SIG_NOT_AVAILABLE}, {100000, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_vds(&f, &up, GNSS) >= 0);
+    put(&f);
+    run(&b, 100U);
+    const pfe_msg_vds_t na = {{0U, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE},
+                              {0, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE}};
+    assert_true(pfe_codec_encode_vds(&f, &na, GNSS) >= 0);
+    put(&f);
+    run(&b, 1U);
+    assert_int_equal(g_ecu.in[PFE_IN_ALTITUDE].state, PFE_SIG_NOT_AVAILABLE);
+    assert_false(g_ecu.altgrade.started);
+    /* a calibration names the speed's sender: the engine's is ignored */
+    c = config();
+    c.input_source_fixed[PFE_IN_SPEED] = true;
+    c.input_source[PFE_IN_SPEED] = CAB;
+    start(&c);
+    run(&b, 100U);
+    assert_int_equal(g_ecu.in[PFE_IN_SPEED].state, PFE_SIG_NOT_AVAILABLE);
+    assert_int_equal(pfe_input_source(&g_ecu.in[PFE_IN_SPEED]), CAB);
+    /* an HRLFC "not available" from another node does not keep the module off it */
+    c = config();
+    start(&c);
+    bool hrlfc = false;
+    for (uint32_t k = 0U; (k < 500U) && !hrlfc; k++) {
+        if ((k % 100U) == 50U) {
+            const pfe_msg_hrlfc_t h = {{0U, PFE_SIG_NOT_AVAILABLE}, {0U, PFE_SIG_NOT_AVAILABLE}};
+            assert_true(pfe_codec_encode_hrlfc(&f, &h, ENGINE) >= 0);
+            put(&f);
+        }
+        tick_bus(&b);
+        hrlfc = sent(PFE_PGN_HRLFC) != NULL;
+    }
+    assert_true(hrlfc);
+    /* an own truck whose calibration fails its check */
+    pfe_vehicle_calib_t bad = pfe_default_vehicle;
+    bad.mass_kg = 10U;
+    c = config();
+    c.own_vehicle = &bad;
+    memset(&g_ecu, 0, sizeof g_ecu);
+    assert_int_equal(pfe_ecu_init(&g_ecu, &c, NULL, -1, g_now), PFE_EINVAL);
 }
 
 int main(void)
@@ -531,6 +642,7 @@ int main(void)
         cmocka_unit_test(test_speed_jump_is_rejected),
         cmocka_unit_test(test_random_payloads),
         cmocka_unit_test(test_device_status_reports),
+        cmocka_unit_test(test_bad_frames_and_configurations),
         cmocka_unit_test(test_identifies_the_truck_from_the_engine),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

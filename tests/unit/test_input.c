@@ -193,6 +193,10 @@ static void test_stale_input_restarts(void **state)
     assert_int_equal(g_in.state, NA);
     assert_int_equal(speed(ENGINE, OK_, 30000, T0 + (50U * P)), PFE_INPUT_ACCEPTED);
     assert_int_equal(g_in.value, 30000);
+    /* not aged in between: the rate is checked over three periods at most
+     * (3 m/s + 1 m/s allowed, however long the gap) */
+    assert_int_equal(speed(ENGINE, OK_, 34000, T0 + (60U * P)), PFE_INPUT_ACCEPTED);
+    assert_int_equal(speed(ENGINE, OK_, 38001, T0 + (70U * P)), PFE_INPUT_REJECTED);
 }
 
 /* Grade: 20 %/s over 10 ms = 2000 ppm, plus 5000 ppm. */
@@ -298,8 +302,13 @@ static void test_altitude_standing_and_gaps(void **state)
     }
     assert_true(pfe_altgrade_grade(&ag, &g));
     assert_int_equal(g, 0);
+    /* a sample 50 m on (the longest step that does not restart) takes the
+     * filter all the way */
+    pfe_altgrade_sample(&ag, 250000U, 50000);
+    assert_true(pfe_altgrade_grade(&ag, &g));
+    assert_int_equal(ag.filtered_q8_mm, 50000 * 256);
     /* 60 m without a sample: start again */
-    pfe_altgrade_sample(&ag, 260001U, 50000);
+    pfe_altgrade_sample(&ag, 310001U, 50000);
     assert_false(pfe_altgrade_grade(&ag, &g));
     /* an odometer that went back: start again */
     pfe_altgrade_sample(&ag, 100U, 50000);
