@@ -206,6 +206,8 @@ def disassemble(elf, funcs):
                     info[cur]["regbranch"].append("switch table entry 0x%x at 0x%x leaves %s"
                                                   % (w, addr, cur))
             continue
+        if table is not None and op.split(".")[0] == "nop" and table["entries"] == 0:
+            continue  # the padding that aligns the table after a 2-byte-aligned ldr.w
         if table is not None:
             if table["entries"] == 0:
                 info[table["func"]]["regbranch"].append("switch table without entries at 0x%x"
@@ -252,14 +254,16 @@ def disassemble(elf, funcs):
             fi["regbranch"].append("%s %s at 0x%x" % (op, rest, addr))
         elif base == "ldr" and re.match(r"pc,", rest) and not re.match(r"pc,\s*\[sp\]", rest):
             # GCC's switch: adr rX, TABLE; ldr.w pc, [rX, rY, lsl #2]; TABLE
-            # right after, every entry an address in this function: a jump
+            # right after (or after a nop aligning it), every entry an address in this function: a jump
             # within it, not a call.
             jt = re.match(r"pc,\s*\[(r\d+),\s*r\d+,\s*lsl\s*#2\]$", rest)
             adr = None
             if jt and prev is not None and prev[0] == cur and prev[2].split(".")[0] == "add":
                 adr = re.match(r"(r\d+),\s*pc,\s*#(\d+)$", prev[3])
+            # the table follows the ldr.w, or the nop that aligns it to 4
+            at = ((prev[1] + 4) & ~3) + int(adr.group(2)) if adr else -1
             if (adr and adr.group(1) == jt.group(1) and
-                    ((prev[1] + 4) & ~3) + int(adr.group(2)) == addr + 4):
+                    (at == addr + 4 or (at == addr + 6 and at % 4 == 0))):
                 lo, size = funcs[cur]
                 table = {"func": cur, "lo": lo, "hi": lo + size, "entries": 0, "at": addr}
             else:
