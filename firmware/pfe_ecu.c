@@ -513,14 +513,31 @@ uint32_t pfe_ecu_nvm_slot(const pfe_ecu_t *ecu)
     return pfe_nvm_next_slot(ecu->nvm_last_slot);
 }
 
-void pfe_ecu_nvm_take(pfe_ecu_t *ecu, pfe_nvm_state_t *out)
+void pfe_ecu_nvm_take(const pfe_ecu_t *ecu, pfe_nvm_state_t *out)
 {
-    ecu->nvm_sequence++;
-    out->sequence = ecu->nvm_sequence;
+    out->sequence = ecu->nvm_sequence + 1U;
     out->own_fuel_ul = pfe_ecu_own_fuel_ul(ecu);
     out->platoon_fuel_ul = pfe_ecu_platoon_fuel_ul(ecu);
-    ecu->nvm_last_slot = (int)pfe_nvm_next_slot(ecu->nvm_last_slot);
-    ecu->last_save_us = ecu->now_us;
+}
+
+void pfe_ecu_nvm_written(pfe_ecu_t *ecu, int result)
+{
+    const bool completed = result == 0;
+    if (completed) {
+        ecu->nvm_sequence++;
+        ecu->nvm_last_slot = (int)pfe_nvm_next_slot(ecu->nvm_last_slot);
+        ecu->last_save_us = ecu->now_us;
+        ecu->nvm_fail_streak = 0U;
+        ecu->nvm_failing = false;
+    } else {
+        /* Slot, sequence and interval stay: the next tick writes the same
+         * slot again, and the other slot keeps the last completed record. */
+        count_up(&ecu->count.nvm_write_failures, 1U);
+        count_up(&ecu->nvm_fail_streak, 1U);
+        if (ecu->nvm_fail_streak >= PFE_ECU_NVM_FAILING_AFTER) {
+            ecu->nvm_failing = true;
+        }
+    }
 }
 
 uint64_t pfe_ecu_own_fuel_ul(const pfe_ecu_t *ecu)

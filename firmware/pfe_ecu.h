@@ -26,8 +26,11 @@
  * L, a rate above 3212.75 L/h, a prediction above 642.55 L or 6425.5 s).
  *
  * Total fuel used survives a reset through two NVM slots (pfe_nvm.h): the
- * main loop reads them before pfe_ecu_init(), and writes
- * pfe_ecu_nvm_take() to pfe_ecu_nvm_slot() whenever pfe_ecu_nvm_due().
+ * main loop reads them before pfe_ecu_init(), writes pfe_ecu_nvm_take() to
+ * pfe_ecu_nvm_slot() whenever pfe_ecu_nvm_due(), and reports the write's
+ * result with pfe_ecu_nvm_written(): only a completed write moves the next
+ * save to the other slot, so the slot holding the last completed record is
+ * never written while a failing write is retried.
  *
  * Time: microseconds of one monotonic clock, passed in; frames carry their
  * receive time on the same clock. Memory: all in pfe_ecu_t (caller owned).
@@ -56,6 +59,7 @@
 #define PFE_ECU_PREDICT_PERIOD_US 1000000U /* a new prediction from the current position */
 #define PFE_ECU_PREDICT_MAX_AGE_US 3000000U /* an older prediction is sent as not available */
 #define PFE_ECU_DEFAULT_SET_SPEED_MM_S 25000 /* 90 km/h, until PFE_PlatoonConfig gives one */
+#define PFE_ECU_NVM_FAILING_AFTER 3U   /* failed NVM writes in a row that set nvm_failing */
 
 /* What the module is and how it starts. */
 typedef struct {
@@ -103,6 +107,7 @@ typedef struct {
     uint32_t overruns;                 /* ticks the main loop reported late */
     uint32_t requests_answered;
     uint32_t claims_lost;
+    uint32_t nvm_write_failures;       /* NVM writes the main loop reported failed */
 } pfe_ecu_counters_t;
 
 typedef struct {
@@ -147,8 +152,10 @@ typedef struct {
     uint64_t now_us;
     uint32_t tick;
     uint64_t last_save_us;
-    uint32_t nvm_sequence;
-    int nvm_last_slot;
+    uint32_t nvm_sequence;             /* of the last completed NVM write */
+    int nvm_last_slot;                 /* slot of the last completed write, -1 for none */
+    uint32_t nvm_fail_streak;          /* failed writes since the last completed one */
+    bool nvm_failing;                  /* PFE_ECU_NVM_FAILING_AFTER failures in a row, until a write completes */
     uint32_t outputs_clamped;          /* bit per output whose last frame the codec clamped */
     pfe_ecu_counters_t count;
 } pfe_ecu_t;
@@ -187,11 +194,28 @@ void pfe_ecu_note_overrun(pfe_ecu_t *ecu, uint32_t ticks);
 void pfe_ecu_note_tx_dropped(pfe_ecu_t *ecu, uint32_t frames);
 void pfe_ecu_note_rx_dropped(pfe_ecu_t *ecu, uint32_t frames);
 
-/* NVM: due once per save interval. pfe_ecu_nvm_take() fills the record to
- * write to pfe_ecu_nvm_slot() and restarts the interval. */
+/*
+ * NVM save path, in this order on one tick:
+ *   pfe_ecu_nvm_due()      true once the save interval has run since the last
+ *                          completed write (and so again on every tick after
+ *                          a failed one: the retry);
+ *   pfe_ecu_nvm_slot()     the slot to write: the other one than the last
+ *                          completed write's; unchanged by a failure;
+ *   pfe_ecu_nvm_take()     fills the record: the totals now, the sequence
+ *                          after the last completed write's; changes nothing;
+ *   pfe_ecu_nvm_written()  the write's result: 0 commits it (sequence and
+ *                          slot advance, the interval restarts, nvm_failing
+ *                          clears); anything else counts
+ *                          count.nvm_write_failures, keeps slot, sequence and
+ *                          interval, and the PFE_ECU_NVM_FAILING_AFTER-th
+ *                          failure in a row sets nvm_failing.
+ * A reset before pfe_ecu_nvm_written() loses nothing but the write: the boot
+ * restores the last completed record. Each O(1).
+ */
 bool pfe_ecu_nvm_due(const pfe_ecu_t *ecu);
 uint32_t pfe_ecu_nvm_slot(const pfe_ecu_t *ecu);
-void pfe_ecu_nvm_take(pfe_ecu_t *ecu, pfe_nvm_state_t *out);
+void pfe_ecu_nvm_take(const pfe_ecu_t *ecu, pfe_nvm_state_t *out);
+void pfe_ecu_nvm_written(pfe_ecu_t *ecu, int result);
 
 /* Fuel used so far, uL: own vehicle and platoon. */
 uint64_t pfe_ecu_own_fuel_ul(const pfe_ecu_t *ecu);

@@ -550,6 +550,7 @@ static void test_resets_never_lose_more_than_one_save_interval(void **state)
                     break;
                 }
                 assert_int_equal(hal_nvm_write(&nvm, to, bytes), 0);
+                pfe_ecu_nvm_written(&g_ecu, 0);
                 saved = rec.own_fuel_ul;
             }
         }
