@@ -190,12 +190,28 @@ static void on_request(pfe_ecu_t *ecu, const pfe_can_frame_t *f)
     }
 }
 
+/* The last PFE_PlatoonConfig of a tick wins: the frame waits, undecoded,
+ * for apply_platoon_config() after the queue, which rebuilds the model at
+ * most once per tick. */
 static void on_platoon_config(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
 {
+    ecu->config_frame = *f;
+    ecu->config_frame_us = rx_us;
+    ecu->config_frame_pending = true;
+}
+
+/* The tick's last PFE_PlatoonConfig: decoded, and the model rebuilt when it
+ * changed (configure(): O(n_vehicles)). Returns whether it rebuilt. */
+static bool apply_platoon_config(pfe_ecu_t *ecu)
+{
+    if (!ecu->config_frame_pending) {
+        return false;
+    }
+    ecu->config_frame_pending = false;
     pfe_msg_platoon_config_t m;
-    if (pfe_codec_decode_platoon_config(f, &m) < 0) {
+    if (pfe_codec_decode_platoon_config(&ecu->config_frame, &m) < 0) {
         count_up(&ecu->count.rx_rejected, 1U);
-        return;
+        return false;
     }
     uint32_t gap_mm = 0U;
     pfe_sig_state_t st = m.n_vehicles.state;
@@ -205,9 +221,9 @@ static void on_platoon_config(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t
     if ((st == PFE_SIG_VALID) && (pfe_codec_platoon_gap_mm(&m, &gap_mm) != PFE_SIG_VALID)) {
         st = PFE_SIG_NOT_AVAILABLE;
     }
-    input_update(&ecu->config, st, rx_us);
+    input_update(&ecu->config, st, ecu->config_frame_us);
     if (st != PFE_SIG_VALID) {
-        return;
+        return false;
     }
     const bool changed = ecu->degraded || (m.n_vehicles.value != ecu->platoon.n_vehicles) ||
                          (m.own_position.value != ecu->own_position) ||
@@ -220,6 +236,7 @@ static void on_platoon_config(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t
             ecu->config.state = PFE_SIG_OUT_OF_RANGE;
         }
     }
+    return changed;
 }
 
 static void on_frame(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
@@ -310,12 +327,15 @@ static uint32_t sat_u32(uint64_t v)
 }
 
 /* Step 5 of the tick: the prediction's share of work. */
-static void predict(pfe_ecu_t *ecu, uint64_t now_us)
+static void predict(pfe_ecu_t *ecu, uint64_t now_us, bool work)
 {
     const bool speed_ok = ecu->speed.state == PFE_SIG_VALID;
     if (speed_ok && (ecu->speed_mm_s > 0)) {
         /* mm/s over 10 ms = 10 um per mm/s */
         ecu->preview_travelled_um += (uint64_t)ecu->speed_mm_s * (PFE_ECU_TICK_US / 1000U);
+    }
+    if (!work) {
+        return; /* a burst's tick: the prediction goes on at the next */
     }
     if ((ecu->predict.phase == PFE_PREDICT_IDLE) && speed_ok &&
         (ecu->preview_buf.phase == PFE_PREVIEW_READY) &&
@@ -429,12 +449,21 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
     ecu->now_us = now_us;
     ecu->speed.fresh = false;
     ecu->grade.fresh = false;
-    while (ecu->rxq_count > 0U) {
+    /* Bounded work: PFE_ECU_RX_PER_TICK frames, fewer once a platoon
+     * configuration waits (its rebuild is the dearest work of a tick), one
+     * rebuild, the prediction's share only in a light tick. What a burst
+     * leaves waits for the next tick. */
+    uint32_t drained = 0U;
+    while ((ecu->rxq_count > 0U) && (drained < PFE_ECU_RX_PER_TICK) &&
+           (!ecu->config_frame_pending || (drained < PFE_ECU_RX_WITH_CONFIG))) {
         const uint32_t k = ecu->rxq_head;
         ecu->rxq_head = (ecu->rxq_head + 1U) % PFE_ECU_RX_QUEUE_LEN;
         ecu->rxq_count--;
         on_frame(ecu, &ecu->rxq[k], ecu->rxq_us[k]);
+        drained++;
     }
+    const bool rebuilt = apply_platoon_config(ecu);
+    const bool light = !rebuilt && (drained <= PFE_ECU_PREDICT_MAX_FRAMES);
     age(&ecu->speed, now_us, SPEED_PERIOD_US);
     age(&ecu->grade, now_us, GRADE_PERIOD_US);
     age(&ecu->config, now_us, CONFIG_PERIOD_US);
@@ -448,7 +477,7 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
         ecu->grade_ppm, ecu->grade.state == PFE_SIG_VALID,
     };
     ecu->out = pfe_estimator_step(&ecu->est, &in);
-    predict(ecu, now_us);
+    predict(ecu, now_us, light);
 
     uint32_t n = 0U;
     pfe_can_frame_t f;

@@ -6,13 +6,20 @@
  *   1. drains the bounded receive queue (frames queued by pfe_ecu_receive()),
  *      matching J1939 PGNs with priority and source address masked, and
  *      decodes and validates each input (range, not available, error);
+ *      at most PFE_ECU_RX_PER_TICK frames a tick, PFE_ECU_RX_WITH_CONFIG
+ *      once a PFE_PlatoonConfig is among them (the rest waits for the
+ *      next tick); of several PFE_PlatoonConfig in one tick the last wins,
+ *      decoded once, and the platoon model is rebuilt at most once a tick;
  *   2. ages the inputs: a message older than three of its periods makes its
  *      inputs not available (PFE_ECU_STALE_PERIODS);
  *   3. steps the estimator (pfe_estimator.h);
  *   4. sends each output on its J1939 schedule (can_dbc/pfe.dbc), plus the
  *      answers to requests (PGN 59904) and the address claim (J1939-81);
  *   5. gives the prediction over the grade preview (pfe_predict.h) its
- *      share of the tick, PFE_ECU_PREDICT_UNITS: once a second a new
+ *      share of the tick, PFE_ECU_PREDICT_UNITS, unless the tick rebuilt
+ *      the platoon or decoded more than PFE_ECU_PREDICT_MAX_FRAMES frames
+ *      (a burst: then it waits a tick, so that a tick's work stays within
+ *      20,000 Cortex-M4 instructions, `make bench`): once a second a new
  *      prediction starts from the current speed and the distance travelled
  *      since the preview's header, a new preview or platoon abandons the one
  *      in progress, and PFE_FuelPrediction sends the latest (not available
@@ -51,6 +58,9 @@
 
 #define PFE_ECU_TICK_US 10000U
 #define PFE_ECU_RX_QUEUE_LEN 64U       /* frames between two ticks; more are dropped and counted */
+#define PFE_ECU_RX_PER_TICK 48U        /* frames one tick decodes at most; the rest waits a tick */
+#define PFE_ECU_RX_WITH_CONFIG 8U      /* ... and at most this many once a PFE_PlatoonConfig waits */
+#define PFE_ECU_PREDICT_MAX_FRAMES 24U /* a tick that decodes more skips the prediction's share */
 #define PFE_ECU_TX_MAX 16U             /* frames one tick may send at most */
 #define PFE_ECU_STALE_PERIODS 3U
 #define PFE_ECU_CLAIM_WAIT_US 250000U  /* J1939-81: wait after claiming before sending */
@@ -133,6 +143,10 @@ typedef struct {
     int32_t grade_ppm;
     bool grade_saturated;              /* the last pitch was beyond +-PFE_GRADE_MAX_PPM */
     pfe_msg_platoon_config_t platoon_msg;
+    /* the tick's last PFE_PlatoonConfig, decoded and applied once after the queue */
+    pfe_can_frame_t config_frame;
+    uint64_t config_frame_us;
+    bool config_frame_pending;
     pfe_preview_t preview_buf;
     /* model */
     pfe_platoon_t platoon;

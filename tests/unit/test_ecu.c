@@ -507,6 +507,66 @@ static void test_platoon_config_switches_the_model(void **state)
     assert_int_equal(next_status(true, true).platoon_config_input, PFE_SIG_NOT_AVAILABLE);
 }
 
+/* A burst of configurations: PFE_ECU_RX_WITH_CONFIG frames a tick, the
+ * last of them wins, decoded once; a malformed last one leaves the platoon
+ * as it was. */
+static void test_platoon_config_burst_last_wins(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < 16U; k++) {
+        pfe_can_frame_t f;
+        const pfe_msg_platoon_config_t m = {{3U + (k % 4U), PFE_SIG_VALID}, {k % 3U, PFE_SIG_VALID},
+                                            {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
+                                            {25000, PFE_SIG_VALID}};
+        assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+        pfe_ecu_receive(&g_ecu, &f, g_now);
+    }
+    tick(false, false);
+    /* the 8th: 3 + 7 % 4 = 6 trucks, position 7 % 3 = 1 */
+    assert_int_equal(g_ecu.count.rx_frames, 8);
+    assert_int_equal(g_ecu.platoon.n_vehicles, 6);
+    assert_int_equal(g_ecu.own_position, 1);
+    tick(true, true);
+    /* the 16th: 3 + 15 % 4 = 6 trucks, position 15 % 3 = 0 */
+    assert_int_equal(g_ecu.count.rx_frames, 16);
+    assert_int_equal(g_ecu.platoon.n_vehicles, 6);
+    assert_int_equal(g_ecu.own_position, 0);
+    assert_false(g_ecu.degraded);
+    assert_int_equal(g_ecu.config.state, PFE_SIG_VALID);
+    const uint32_t rejected = g_ecu.count.rx_rejected;
+    pfe_can_frame_t f;
+    const pfe_msg_platoon_config_t m = {{4U, PFE_SIG_VALID}, {1U, PFE_SIG_VALID},
+                                        {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
+                                        {25000, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    f.dlc = 3U;
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    tick(true, true);
+    assert_int_equal(g_ecu.count.rx_rejected, rejected + 1U);
+    assert_int_equal(g_ecu.platoon.n_vehicles, 6);
+    assert_int_equal(g_ecu.own_position, 0);
+}
+
+/* A full queue: PFE_ECU_RX_PER_TICK frames this tick, the rest the next. */
+static void test_full_queue_spreads_over_two_ticks(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < PFE_ECU_RX_QUEUE_LEN; k++) {
+        send_pitch(0);
+    }
+    const uint32_t before = g_ecu.count.rx_frames;
+    tick(false, false);
+    assert_int_equal(g_ecu.count.rx_frames - before, 48);
+    tick(false, false);
+    assert_int_equal(g_ecu.count.rx_frames - before, 64);
+    assert_int_equal(g_ecu.count.rx_dropped, 0);
+}
+
 /* 1000 resets at pseudo-random instants, some in the middle of an NVM write. */
 static void test_resets_never_lose_more_than_one_save_interval(void **state)
 {
@@ -579,6 +639,8 @@ int main(void)
         cmocka_unit_test(test_counters_reach_the_status_message),
         cmocka_unit_test(test_receive_filters),
         cmocka_unit_test(test_platoon_config_switches_the_model),
+        cmocka_unit_test(test_platoon_config_burst_last_wins),
+        cmocka_unit_test(test_full_queue_spreads_over_two_ticks),
         cmocka_unit_test(test_prediction_over_a_preview),
         cmocka_unit_test(test_resets_never_lose_more_than_one_save_interval),
     };
