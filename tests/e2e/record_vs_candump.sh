@@ -36,7 +36,7 @@ check() {
 # gets error frames through its filter syntax (every id, every error class):
 # its -e cannot go with -L.
 start_both() {
-    candump -L "$1,0:0,#FFFFFFFF" >"$tmp/candump.log" 2>"$tmp/candump.err" &
+    candump -r 8388608 -L "$1,0:0,#FFFFFFFF" >"$tmp/candump.log" 2>"$tmp/candump.err" &
     cd_pid=$!
     "$dir/pfe_record" -o "$tmp/record.log" "$1" 2>"$tmp/record.err" &
     pr_pid=$!

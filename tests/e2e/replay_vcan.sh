@@ -92,13 +92,32 @@ replay_capture() {
     ifc=$2
     n=$3
     shift 3
-    candump -L -n "$n" -T 20000 "$ifc" >"$tmp/cap.log" &
+    # candump asks for 8 MiB of receive buffer (about 10,000 frames, so a
+    # busy machine does not make it drop) and reports what the kernel still
+    # dropped (-d: DROPCOUNT lines, taken out of the log below).
+    candump -r 8388608 -d -L -n "$n" -T 20000 "$ifc" >"$tmp/cap.raw" &
     pid=$!
     wait_listening "$pid" "$ifc" 1 || return 1
     # shellcheck disable=SC2046 # one assignment per interface
     "$rp" --quiet -I "$log" "$@" $(sed -n 's/^ *([^)]*) *\([^ ]*\) .*/\1/p' "$log" | sort -u |
-        sed "s/^/$ifc=/") || { kill "$pid"; return 1; }
-    wait "$pid" || { echo "candump: exit $? ($(wc -l <"$tmp/cap.log") of $n frames)"; return 1; }
+        sed "s/^/$ifc=/") 2>"$tmp/rp_summary.txt" || { cat "$tmp/rp_summary.txt"; kill "$pid"; return 1; }
+    cd_rc=0
+    wait "$pid" || cd_rc=$?
+    grep -v '^DROPCOUNT' "$tmp/cap.raw" >"$tmp/cap.log"
+    # candump -d: "DROPCOUNT: dropped N CAN frame(s) on 'IF' socket (total drops T)"
+    rx_drops=$(sed -n 's/.*total drops \([0-9]*\).*/\1/p' "$tmp/cap.raw" | tail -n 1)
+    rx_drops=${rx_drops:-0}
+    sent=$(sed -n 's/^pfe_replay: \([0-9]*\) sent.*/\1/p' "$tmp/rp_summary.txt")
+    tx_drops=$(sed -n 's/.* \([0-9]*\) dropped.*/\1/p' "$tmp/rp_summary.txt" | head -n 1)
+    got=$(wc -l <"$tmp/cap.log")
+    echo "by side: pfe_replay sent ${sent:-?} of $n, dropped ${tx_drops:-?} (transmit queue);" \
+        "candump received $got, the kernel dropped $rx_drops at its socket;" \
+        "unexplained $((n - ${tx_drops:-0} - rx_drops - got))"
+    # A round trip is for identical frames: a frame lost at either side
+    # leaves nothing to compare it with, so it fails, saying where it went.
+    [ "$cd_rc" -eq 0 ] || { echo "candump: exit $cd_rc ($got of $n frames)"; return 1; }
+    [ "$rx_drops" -eq 0 ] || { echo "candump's socket dropped $rx_drops frames (receive buffer full)"; return 1; }
+    [ "${tx_drops:-0}" -eq 0 ] || { echo "pfe_replay dropped $tx_drops frames (transmit queue full)"; return 1; }
 }
 
 # Round trip of candump log $1 on interface $2 (at speed $3, default SPEED).
@@ -116,11 +135,11 @@ round_trip() {
 # (the same drive in the printed format, for the next checks).
 drive_three_ways() {
     n=$(grep -c '^ *(' "$dir/drive.log")
-    candump -L -n "$n" -T 20000 vcan0 >"$tmp/drive_cap.log" &
+    candump -r 8388608 -L -n "$n" -T 20000 vcan0 >"$tmp/drive_cap.log" &
     p1=$!
-    candump -t a -n "$n" -T 20000 vcan0 >"$tmp/drive_a.txt" &
+    candump -r 8388608 -t a -n "$n" -T 20000 vcan0 >"$tmp/drive_a.txt" &
     p2=$!
-    candump -t z -n "$n" -T 20000 vcan0 >"$tmp/drive_z.txt" &
+    candump -r 8388608 -t z -n "$n" -T 20000 vcan0 >"$tmp/drive_z.txt" &
     p3=$!
     wait_listening "$p1" vcan0 3 || return 1
     "$rp" -I "$dir/drive.log" --speed "$SPEED" --quiet || return 1
@@ -144,7 +163,7 @@ drive_asc() {
     log2asc -I "$tmp/drive_cap.log" vcan0 >"$tmp/drive.asc" || return 1
     echo "ASC by log2asc, e.g.: $(sed -n 5p "$tmp/drive.asc")"
     n=$(grep -c '^ *(' "$dir/drive.log")
-    candump -L -n "$n" -T 20000 vcan0 >"$tmp/cap.log" &
+    candump -r 8388608 -L -n "$n" -T 20000 vcan0 >"$tmp/cap.log" &
     pid=$!
     wait_listening "$pid" vcan0 1 || return 1
     "$rp" --quiet -I "$tmp/drive.asc" vcan0=can0 || { kill "$pid"; return 1; }
@@ -155,7 +174,7 @@ drive_asc() {
 # ---------------------------------------------------------------- logs candump wrote of cangen
 
 cangen_log() {
-    candump -L -n 300 -T 20000 vcan0 >"$tmp/cangen.log" &
+    candump -r 8388608 -L -n 300 -T 20000 vcan0 >"$tmp/cangen.log" &
     pid=$!
     wait_listening "$pid" vcan0 1 || return 1
     cangen vcan0 -n 100 -g 1 && cangen vcan0 -n 100 -g 1 -e && cangen vcan0 -n 100 -g 1 -R ||
@@ -168,7 +187,7 @@ cangen_log() {
 cangen_fd_log() {
     ip link set dev vcan1 down && ip link set dev vcan1 mtu 72 && ip link set dev vcan1 up ||
         { echo "cannot give vcan1 the CAN FD MTU"; return 1; }
-    candump -L -n 200 -T 20000 vcan1 >"$tmp/cangen_fd.log" &
+    candump -r 8388608 -L -n 200 -T 20000 vcan1 >"$tmp/cangen_fd.log" &
     pid=$!
     wait_listening "$pid" vcan1 1 || return 1
     cangen vcan1 -n 200 -g 1 -m || { kill "$pid"; return 1; }
@@ -190,7 +209,7 @@ uptime_cs() { awk '{ printf "%d\n", $1 * 100 }' /proc/uptime; }
 pace_run() {
     tag=$1
     shift
-    candump -L -n "$n" -T 20000 vcan0 >"$tmp/pace_$tag.log" &
+    candump -r 8388608 -L -n "$n" -T 20000 vcan0 >"$tmp/pace_$tag.log" &
     pid=$!
     wait_listening "$pid" vcan0 1 || return 1
     t0=$(uptime_cs)
