@@ -37,17 +37,16 @@ static void count_up(uint32_t *c, uint32_t n)
     *c = (*c > (UINT32_MAX - n)) ? UINT32_MAX : (*c + n);
 }
 
-static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
+/* Makes ecu->platoon_next (built) the model, the own truck at `position`.
+ * Totals carry over a change of platoon: the own truck's to its new
+ * position. Read before the platoon changes: the estimator reads a
+ * position's total only below the platoon's size. */
+static void adopt_platoon(pfe_ecu_t *ecu, const pfe_platoon_t *next, uint32_t position)
 {
-    /* Totals carry over a change of platoon: the own truck's to its new
-     * position. Read before the platoon changes: the estimator reads a
-     * position's total only below the platoon's size. */
     const uint64_t own = pfe_ecu_own_fuel_ul(ecu);
     const uint64_t platoon = pfe_ecu_platoon_fuel_ul(ecu);
-    pfe_platoon_config_t pc;
-    pfe_platoon_config_uniform(&pc, n, gap_mm, ecu->cfg.vehicle, ecu->cfg.env, ecu->cfg.drag);
-    if ((pc.n_vehicles != n) || (position >= n) || (pfe_platoon_init(&ecu->platoon, &pc) != PFE_OK)) {
-        return PFE_EINVAL;
+    if (next != &ecu->platoon) {
+        ecu->platoon = *next;
     }
     /* The prediction in progress was for the old platoon. */
     pfe_predict_cancel(&ecu->predict);
@@ -55,7 +54,62 @@ static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap
     ecu->own_position = position;
     (void)pfe_estimator_set_fuel_used_ul(&ecu->est, (int32_t)position, own);
     (void)pfe_estimator_set_fuel_used_ul(&ecu->est, PFE_EST_PLATOON, platoon);
+}
+
+/* The platoon at once (start-up). */
+static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
+{
+    pfe_platoon_config_t pc;
+    pfe_platoon_config_uniform(&pc, n, gap_mm, ecu->cfg.vehicle, ecu->cfg.env, ecu->cfg.drag);
+    if ((pc.n_vehicles != n) || (position >= n) || (pfe_platoon_init(&ecu->platoon_next, &pc) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    adopt_platoon(ecu, &ecu->platoon_next, position);
     return PFE_OK;
+}
+
+/* The platoon of a PFE_PlatoonConfig, built over the next ticks
+ * (rebuild_step()) into platoon_next while the old one runs. */
+static int rebuild_start(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
+{
+    pfe_platoon_config_t *pc = &ecu->platoon_next_cfg;
+    pfe_platoon_config_uniform(pc, n, gap_mm, ecu->cfg.vehicle, ecu->cfg.env, ecu->cfg.drag);
+    ecu->platoon_building = false;
+    if ((pc->n_vehicles != n) || (position >= n) || (pfe_platoon_init_begin(pc) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    ecu->platoon_next_position = position;
+    ecu->platoon_next_built = 0U;
+    ecu->platoon_building = true;
+    return PFE_OK;
+}
+
+/* One tick's share of the rebuild: PFE_ECU_REBUILD_PER_TICK positions, or
+ * the aggregates and the switch. Returns whether it did any work. */
+static bool rebuild_step(pfe_ecu_t *ecu)
+{
+    if (!ecu->platoon_building) {
+        return false;
+    }
+    const pfe_platoon_config_t *pc = &ecu->platoon_next_cfg;
+    int rc = PFE_OK;
+    if (ecu->platoon_next_built < pc->n_vehicles) {
+        rc = pfe_platoon_init_positions(&ecu->platoon_next, pc, ecu->platoon_next_built,
+                                        PFE_ECU_REBUILD_PER_TICK);
+        ecu->platoon_next_built += PFE_ECU_REBUILD_PER_TICK;
+    } else {
+        rc = pfe_platoon_init_finish(&ecu->platoon_next, pc);
+        if (rc == PFE_OK) {
+            adopt_platoon(ecu, &ecu->platoon_next, ecu->platoon_next_position);
+            ecu->degraded = false;
+        }
+        ecu->platoon_building = false;
+    }
+    if (rc != PFE_OK) {
+        ecu->platoon_building = false;
+        ecu->config.state = PFE_SIG_OUT_OF_RANGE;
+    }
+    return true;
 }
 
 int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_state_t *restored,
@@ -200,18 +254,18 @@ static void on_platoon_config(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t
     ecu->config_frame_pending = true;
 }
 
-/* The tick's last PFE_PlatoonConfig: decoded, and the model rebuilt when it
- * changed (configure(): O(n_vehicles)). Returns whether it rebuilt. */
-static bool apply_platoon_config(pfe_ecu_t *ecu)
+/* The tick's last PFE_PlatoonConfig: decoded, and when it changes the
+ * platoon, a rebuild started (rebuild_start()). */
+static void apply_platoon_config(pfe_ecu_t *ecu)
 {
     if (!ecu->config_frame_pending) {
-        return false;
+        return;
     }
     ecu->config_frame_pending = false;
     pfe_msg_platoon_config_t m;
     if (pfe_codec_decode_platoon_config(&ecu->config_frame, &m) < 0) {
         count_up(&ecu->count.rx_rejected, 1U);
-        return false;
+        return;
     }
     uint32_t gap_mm = 0U;
     pfe_sig_state_t st = m.n_vehicles.state;
@@ -223,20 +277,19 @@ static bool apply_platoon_config(pfe_ecu_t *ecu)
     }
     input_update(&ecu->config, st, ecu->config_frame_us);
     if (st != PFE_SIG_VALID) {
-        return false;
+        return;
     }
-    const bool changed = ecu->degraded || (m.n_vehicles.value != ecu->platoon.n_vehicles) ||
-                         (m.own_position.value != ecu->own_position) ||
-                         (gap_mm != ecu->platoon.gap_mm);
+    /* Against the platoon being built, if one is, else the one running. */
+    const bool building = ecu->platoon_building;
+    const uint32_t n = building ? ecu->platoon_next_cfg.n_vehicles : ecu->platoon.n_vehicles;
+    const uint32_t position = building ? ecu->platoon_next_position : ecu->own_position;
+    const uint32_t gap = building ? ecu->platoon_next_cfg.gap_mm : ecu->platoon.gap_mm;
+    const bool changed = (ecu->degraded && !building) || (m.n_vehicles.value != n) ||
+                         (m.own_position.value != position) || (gap_mm != gap);
     ecu->platoon_msg = m;
-    if (changed) {
-        if (configure(ecu, m.n_vehicles.value, m.own_position.value, gap_mm) == PFE_OK) {
-            ecu->degraded = false;
-        } else {
-            ecu->config.state = PFE_SIG_OUT_OF_RANGE;
-        }
+    if (changed && (rebuild_start(ecu, m.n_vehicles.value, m.own_position.value, gap_mm) != PFE_OK)) {
+        ecu->config.state = PFE_SIG_OUT_OF_RANGE;
     }
-    return changed;
 }
 
 static void on_frame(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
@@ -449,21 +502,22 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
     ecu->now_us = now_us;
     ecu->speed.fresh = false;
     ecu->grade.fresh = false;
-    /* Bounded work: PFE_ECU_RX_PER_TICK frames, fewer once a platoon
-     * configuration waits (its rebuild is the dearest work of a tick), one
-     * rebuild, the prediction's share only in a light tick. What a burst
-     * leaves waits for the next tick. */
+    /* Bounded work: PFE_ECU_RX_PER_TICK frames (PFE_ECU_RX_LIGHT while a
+     * platoon is being built), then either a share of the rebuild or of the
+     * prediction, only in a tick that decoded at most PFE_ECU_RX_LIGHT.
+     * What a burst leaves waits for the next tick. */
+    const uint32_t cap = ecu->platoon_building ? PFE_ECU_RX_LIGHT : PFE_ECU_RX_PER_TICK;
     uint32_t drained = 0U;
-    while ((ecu->rxq_count > 0U) && (drained < PFE_ECU_RX_PER_TICK) &&
-           (!ecu->config_frame_pending || (drained < PFE_ECU_RX_WITH_CONFIG))) {
+    while ((ecu->rxq_count > 0U) && (drained < cap)) {
         const uint32_t k = ecu->rxq_head;
         ecu->rxq_head = (ecu->rxq_head + 1U) % PFE_ECU_RX_QUEUE_LEN;
         ecu->rxq_count--;
         on_frame(ecu, &ecu->rxq[k], ecu->rxq_us[k]);
         drained++;
     }
-    const bool rebuilt = apply_platoon_config(ecu);
-    const bool light = !rebuilt && (drained <= PFE_ECU_PREDICT_MAX_FRAMES);
+    apply_platoon_config(ecu);
+    const bool light = drained <= PFE_ECU_RX_LIGHT;
+    const bool rebuilt = light && rebuild_step(ecu);
     age(&ecu->speed, now_us, SPEED_PERIOD_US);
     age(&ecu->grade, now_us, GRADE_PERIOD_US);
     age(&ecu->config, now_us, CONFIG_PERIOD_US);
@@ -477,7 +531,7 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
         ecu->grade_ppm, ecu->grade.state == PFE_SIG_VALID,
     };
     ecu->out = pfe_estimator_step(&ecu->est, &in);
-    predict(ecu, now_us, light);
+    predict(ecu, now_us, light && !rebuilt);
 
     uint32_t n = 0U;
     pfe_can_frame_t f;

@@ -6,18 +6,20 @@
  *   1. drains the bounded receive queue (frames queued by pfe_ecu_receive()),
  *      matching J1939 PGNs with priority and source address masked, and
  *      decodes and validates each input (range, not available, error);
- *      at most PFE_ECU_RX_PER_TICK frames a tick, PFE_ECU_RX_WITH_CONFIG
- *      once a PFE_PlatoonConfig is among them (the rest waits for the
- *      next tick); of several PFE_PlatoonConfig in one tick the last wins,
- *      decoded once, and the platoon model is rebuilt at most once a tick;
+ *      at most PFE_ECU_RX_PER_TICK frames a tick, PFE_ECU_RX_LIGHT while a
+ *      platoon is being built (the rest waits for the next tick); of
+ *      several PFE_PlatoonConfig in one tick the last wins, decoded once;
+ *      a new platoon is built over the next ticks, PFE_ECU_REBUILD_PER_TICK
+ *      trucks a tick, then the aggregates and the switch in a tick of their
+ *      own (32 trucks: 5 ticks), while the old one keeps running;
  *   2. ages the inputs: a message older than three of its periods makes its
  *      inputs not available (PFE_ECU_STALE_PERIODS);
  *   3. steps the estimator (pfe_estimator.h);
  *   4. sends each output on its J1939 schedule (can_dbc/pfe.dbc), plus the
  *      answers to requests (PGN 59904) and the address claim (J1939-81);
  *   5. gives the prediction over the grade preview (pfe_predict.h) its
- *      share of the tick, PFE_ECU_PREDICT_UNITS, unless the tick rebuilt
- *      the platoon or decoded more than PFE_ECU_PREDICT_MAX_FRAMES frames
+ *      share of the tick, PFE_ECU_PREDICT_UNITS, unless the tick did a
+ *      share of a rebuild or decoded more than PFE_ECU_RX_LIGHT frames
  *      (a burst: then it waits a tick, so that a tick's work stays within
  *      20,000 Cortex-M4 instructions, `make bench`): once a second a new
  *      prediction starts from the current speed and the distance travelled
@@ -58,9 +60,10 @@
 
 #define PFE_ECU_TICK_US 10000U
 #define PFE_ECU_RX_QUEUE_LEN 64U       /* frames between two ticks; more are dropped and counted */
-#define PFE_ECU_RX_PER_TICK 48U        /* frames one tick decodes at most; the rest waits a tick */
-#define PFE_ECU_RX_WITH_CONFIG 8U      /* ... and at most this many once a PFE_PlatoonConfig waits */
-#define PFE_ECU_PREDICT_MAX_FRAMES 24U /* a tick that decodes more skips the prediction's share */
+#define PFE_ECU_RX_PER_TICK 32U        /* frames one tick decodes at most; the rest waits a tick */
+#define PFE_ECU_RX_LIGHT 16U           /* a tick that decodes more skips the rebuild's and the
+                                        * prediction's share; while a rebuild runs, the most a tick decodes */
+#define PFE_ECU_REBUILD_PER_TICK 8U    /* platoon positions a tick builds (pfe_platoon_init_positions()) */
 #define PFE_ECU_TX_MAX 16U             /* frames one tick may send at most */
 #define PFE_ECU_STALE_PERIODS 3U
 #define PFE_ECU_CLAIM_WAIT_US 250000U  /* J1939-81: wait after claiming before sending */
@@ -150,6 +153,12 @@ typedef struct {
     pfe_preview_t preview_buf;
     /* model */
     pfe_platoon_t platoon;
+    /* the next platoon, built over ticks (PFE_ECU_REBUILD_PER_TICK trucks a tick) */
+    pfe_platoon_t platoon_next;
+    pfe_platoon_config_t platoon_next_cfg;
+    uint32_t platoon_next_built;       /* positions built so far */
+    uint32_t platoon_next_position;
+    bool platoon_building;
     pfe_estimator_t est;
     /* prediction over the preview */
     pfe_predict_t predict;

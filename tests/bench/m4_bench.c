@@ -403,8 +403,8 @@ static int bench_burst(void)
     static pfe_can_frame_t burst[PFE_ECU_RX_QUEUE_LEN];
     uint64_t worst = 0U;
     uint32_t rng = 1U;
-    /* Mixes 0 .. 6: all of one kind; 7 .. 30: random kinds. */
-    for (uint32_t mix = 0U; mix < 31U; mix++) {
+    /* Mixes 0 .. 6: all of one kind; 7 .. 60: random kinds. */
+    for (uint32_t mix = 0U; mix < 61U; mix++) {
         /* Back to a module that predicts: speed and grade, a whole preview,
          * ticks until a prediction runs. */
         uint32_t sent_frames = 0U;
@@ -433,9 +433,13 @@ static int bench_burst(void)
             }
             burst_frame(kind, k + (mix * PFE_ECU_RX_QUEUE_LEN), &burst[k]);
         }
+        /* Random mixes come in three sizes: the most frames a tick that also
+         * predicts decodes, one more, and a full queue. */
+        const uint32_t len = (mix < 7U) ? PFE_ECU_RX_QUEUE_LEN
+                             : (((mix % 3U) == 0U) ? PFE_ECU_RX_LIGHT
+                                : (((mix % 3U) == 1U) ? (PFE_ECU_RX_LIGHT + 1U) : PFE_ECU_RX_QUEUE_LEN));
         for (uint32_t tick = 0U; tick < 6U; tick++, now += PFE_ECU_TICK_US) {
-            const uint64_t insns = (tick == 0U) ? ecu_tick(now, burst, PFE_ECU_RX_QUEUE_LEN)
-                                                : ecu_tick(now, burst, 2U);
+            const uint64_t insns = (tick == 0U) ? ecu_tick(now, burst, len) : ecu_tick(now, burst, 2U);
             worst = (insns > worst) ? insns : worst;
         }
     }

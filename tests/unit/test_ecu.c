@@ -507,9 +507,10 @@ static void test_platoon_config_switches_the_model(void **state)
     assert_int_equal(next_status(true, true).platoon_config_input, PFE_SIG_NOT_AVAILABLE);
 }
 
-/* A burst of configurations: PFE_ECU_RX_WITH_CONFIG frames a tick, the
- * last of them wins, decoded once; a malformed last one leaves the platoon
- * as it was. */
+/* A burst of configurations in one tick: the last one wins, decoded once,
+ * and its platoon is built over the next ticks (PFE_ECU_REBUILD_PER_TICK
+ * trucks a tick, then the switch) while the old one runs; a malformed last
+ * one changes nothing. */
 static void test_platoon_config_burst_last_wins(void **state)
 {
     (void)state;
@@ -524,17 +525,25 @@ static void test_platoon_config_burst_last_wins(void **state)
         pfe_ecu_receive(&g_ecu, &f, g_now);
     }
     tick(false, false);
-    /* the 8th: 3 + 7 % 4 = 6 trucks, position 7 % 3 = 1 */
-    assert_int_equal(g_ecu.count.rx_frames, 8);
-    assert_int_equal(g_ecu.platoon.n_vehicles, 6);
-    assert_int_equal(g_ecu.own_position, 1);
-    tick(true, true);
-    /* the 16th: 3 + 15 % 4 = 6 trucks, position 15 % 3 = 0 */
     assert_int_equal(g_ecu.count.rx_frames, 16);
+    /* decoded, started and its 6 trucks built; the default platoon (1
+     * truck) still runs */
+    assert_int_equal(g_ecu.platoon.n_vehicles, 1);
+    assert_true(g_ecu.platoon_building);
+    tick(false, false); /* the aggregates, and the switch */
+    /* the 16th: 3 + 15 % 4 = 6 trucks, position 15 % 3 = 0 */
+    assert_false(g_ecu.platoon_building);
     assert_int_equal(g_ecu.platoon.n_vehicles, 6);
     assert_int_equal(g_ecu.own_position, 0);
     assert_false(g_ecu.degraded);
     assert_int_equal(g_ecu.config.state, PFE_SIG_VALID);
+    /* The same platoon, built at once, is the same model. */
+    pfe_platoon_t once;
+    pfe_platoon_config_t pc;
+    pfe_platoon_config_uniform(&pc, 6U, 10000U, &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag);
+    memset(&once, 0, sizeof once);
+    assert_int_equal(pfe_platoon_init(&once, &pc), PFE_OK);
+    assert_memory_equal(&once, &g_ecu.platoon, sizeof once);
     const uint32_t rejected = g_ecu.count.rx_rejected;
     pfe_can_frame_t f;
     const pfe_msg_platoon_config_t m = {{4U, PFE_SIG_VALID}, {1U, PFE_SIG_VALID},
@@ -544,8 +553,11 @@ static void test_platoon_config_burst_last_wins(void **state)
     pfe_ecu_receive(&g_ecu, &f, g_now);
     f.dlc = 3U;
     pfe_ecu_receive(&g_ecu, &f, g_now);
-    tick(true, true);
+    for (uint32_t k = 0U; k < 3U; k++) {
+        tick(true, true);
+    }
     assert_int_equal(g_ecu.count.rx_rejected, rejected + 1U);
+    assert_false(g_ecu.platoon_building);
     assert_int_equal(g_ecu.platoon.n_vehicles, 6);
     assert_int_equal(g_ecu.own_position, 0);
 }
@@ -561,7 +573,7 @@ static void test_full_queue_spreads_over_two_ticks(void **state)
     }
     const uint32_t before = g_ecu.count.rx_frames;
     tick(false, false);
-    assert_int_equal(g_ecu.count.rx_frames - before, 48);
+    assert_int_equal(g_ecu.count.rx_frames - before, 32); /* PFE_ECU_RX_PER_TICK */
     tick(false, false);
     assert_int_equal(g_ecu.count.rx_frames - before, 64);
     assert_int_equal(g_ecu.count.rx_dropped, 0);
