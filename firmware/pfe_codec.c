@@ -30,20 +30,30 @@ const pfe_codec_message_t pfe_codec_messages[PFE_MSG_COUNT] = {
                                 1000U, (uint8_t)PFE_CSIG_PC_NUMBER_OF_VEHICLES, 5U},
     [PFE_MSG_GRADE_PREVIEW] = {"PFE_GradePreview", PFE_PGN_GRADE_PREVIEW, 6U, SA_IN, 8U, RX, 0U,
                                (uint8_t)PFE_CSIG_GP_FRAME_TYPE, 8U},
-    [PFE_MSG_LFE1] = {"LFE1", PFE_PGN_LFE1, 6U, SA_OUT, 8U, TX, 100U,
+    [PFE_MSG_LFE1] = {"LFE1", PFE_PGN_LFE1, 6U, SA_OUT, 8U, RX | TX, 100U,
                       (uint8_t)PFE_CSIG_LFE1_ENGINE_FUEL_RATE, 1U},
     [PFE_MSG_PLATOON_FUEL] = {"PFE_PlatoonFuel", PFE_PGN_PLATOON_FUEL, 6U, SA_OUT, 8U, TX, 100U,
                               (uint8_t)PFE_CSIG_PF_PLATOON_FUEL_RATE, 2U},
-    [PFE_MSG_HRLFC] = {"HRLFC", PFE_PGN_HRLFC, 6U, SA_OUT, 8U, TX, 1000U,
+    [PFE_MSG_HRLFC] = {"HRLFC", PFE_PGN_HRLFC, 6U, SA_OUT, 8U, RX | TX, 1000U,
                        (uint8_t)PFE_CSIG_HRLFC_TRIP_FUEL, 2U},
     [PFE_MSG_FUEL_PREDICTION] = {"PFE_FuelPrediction", PFE_PGN_FUEL_PREDICTION, 6U, SA_OUT, 8U,
                                  TX, 1000U, (uint8_t)PFE_CSIG_FP_PREDICTED_FUEL, 4U},
     [PFE_MSG_STATUS] = {"PFE_Status", PFE_PGN_STATUS, 6U, SA_OUT, 8U, TX, 1000U,
-                        (uint8_t)PFE_CSIG_ST_SPEED_INPUT, 12U},
+                        (uint8_t)PFE_CSIG_ST_SPEED_INPUT, 14U},
     [PFE_MSG_ADDRESS_CLAIMED] = {"AddressClaimed", PFE_PGN_ADDRESS_CLAIMED, 6U, SA_OUT, 8U,
                                  RX | TX, 0U, (uint8_t)PFE_CSIG_AC_IDENTITY_NUMBER, 10U},
     [PFE_MSG_REQUEST] = {"Request", PFE_PGN_REQUEST, 6U, SA_IN, 3U, RX | TX, 0U,
                          (uint8_t)PFE_CSIG_RQST_REQUESTED_PGN, 1U},
+    [PFE_MSG_VDS] = {"VDS", PFE_PGN_VDS, 6U, SA_IN, 8U, RX, 100U,
+                     (uint8_t)PFE_CSIG_VDS_COMPASS_BEARING, 4U},
+    [PFE_MSG_CVW] = {"CVW", PFE_PGN_CVW, 6U, SA_IN, 8U, RX, 0U,
+                     (uint8_t)PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT, 2U},
+    [PFE_MSG_OWN_FUEL] = {"PFE_OwnFuel", PFE_PGN_OWN_FUEL, 6U, SA_OUT, 8U, TX, 100U,
+                          (uint8_t)PFE_CSIG_OF_OWN_FUEL_RATE, 3U},
+    [PFE_MSG_INPUT_STATUS] = {"PFE_InputStatus", PFE_PGN_INPUT_STATUS, 6U, SA_OUT, 8U, TX, 1000U,
+                              (uint8_t)PFE_CSIG_IS_SPEED_SOURCE, 9U},
+    [PFE_MSG_DEVICE_STATUS] = {"PFE_DeviceStatus", PFE_PGN_DEVICE_STATUS, 6U, SA_OUT, 8U, TX,
+                               1000U, (uint8_t)PFE_CSIG_DS_RX_FIFO_OVERRUNS, 10U},
 };
 
 #define NOMUX PFE_CODEC_MUX_NONE
@@ -68,6 +78,11 @@ const pfe_codec_message_t pfe_codec_messages[PFE_MSG_COUNT] = {
 #define C_ST "PFE_Status", PFE_PGN_STATUS
 #define C_AC "AddressClaimed", PFE_PGN_ADDRESS_CLAIMED
 #define C_RQ "Request", PFE_PGN_REQUEST
+#define C_VDS "VDS", PFE_PGN_VDS
+#define C_CVW "CVW", PFE_PGN_CVW
+#define C_OF "PFE_OwnFuel", PFE_PGN_OWN_FUEL
+#define C_IS "PFE_InputStatus", PFE_PGN_INPUT_STATUS
+#define C_DS "PFE_DeviceStatus", PFE_PGN_DEVICE_STATUS
 
 const pfe_codec_signal_t pfe_codec_signals[PFE_CODEC_SIGNAL_COUNT] = {
     [PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED] =
@@ -148,6 +163,10 @@ const pfe_codec_signal_t pfe_codec_signals[PFE_CODEC_SIGNAL_COUNT] = {
         SIG(C_ST, "GradeClamped", 0U, 44U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
     [PFE_CSIG_ST_OUTPUT_SATURATED] =
         SIG(C_ST, "OutputSaturated", 0U, 46U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_ST_INPUTS_REJECTED] =
+        SIG(C_ST, "InputsRejected", 0U, 48U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
+    [PFE_CSIG_ST_ADDRESS_CONFLICTS] =
+        SIG(C_ST, "AddressConflicts", 0U, 56U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
     [PFE_CSIG_AC_IDENTITY_NUMBER] =
         SIG(C_AC, "IdentityNumber", 2837U, 0U, 21U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 0x1FFFFFUL),
     [PFE_CSIG_AC_MANUFACTURER_CODE] =
@@ -170,6 +189,64 @@ const pfe_codec_signal_t pfe_codec_signals[PFE_CODEC_SIGNAL_COUNT] = {
         SIG(C_AC, "ArbitraryAddressCapable", 2844U, 63U, 1U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 1U),
     [PFE_CSIG_RQST_REQUESTED_PGN] =
         SIG(C_RQ, "RequestedPGN", 2540U, 0U, 24U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 0x3FFFFUL),
+    [PFE_CSIG_VDS_COMPASS_BEARING] =
+        SIG(C_VDS, "CompassBearing", 165U, 0U, 16U, NOMUX, J1939, 1, 128, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_VDS_NAV_SPEED] =
+        SIG(C_VDS, "NavigationBasedVehicleSpeed", 517U, 16U, 16U, NOMUX, J1939, 1, 256, 0, 1, 0U,
+            RAW16_MAX),
+    [PFE_CSIG_VDS_PITCH] =
+        SIG(C_VDS, "Pitch", 583U, 32U, 16U, NOMUX, J1939, 1, 128, -200, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_VDS_ALTITUDE] =
+        SIG(C_VDS, "Altitude", 580U, 48U, 16U, NOMUX, J1939, 1, 8, -2500, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT] =
+        SIG(C_CVW, "PoweredVehicleWeight", 1585U, 0U, 16U, NOMUX, J1939, 10, 1, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT] =
+        SIG(C_CVW, "GrossCombinationVehicleWeight", 1760U, 16U, 16U, NOMUX, J1939, 10, 1, 0, 1, 0U,
+            RAW16_MAX),
+    [PFE_CSIG_OF_OWN_FUEL_RATE] =
+        SIG(C_OF, "OwnFuelRate", 0U, 0U, 16U, NOMUX, J1939, 1, 20, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_OF_OWN_TOTAL_FUEL_USED] =
+        SIG(C_OF, "OwnTotalFuelUsed", 0U, 16U, 32U, NOMUX, J1939, 1, 1000, 0, 1, 0U, RAW32_MAX),
+    [PFE_CSIG_OF_MODEL_IDENTIFIED] =
+        SIG(C_OF, "ModelIdentified", 0U, 48U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_IS_SPEED_SOURCE] =
+        SIG(C_IS, "SpeedSourceAddress", 0U, 0U, 8U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 253U),
+    [PFE_CSIG_IS_GRADE_SOURCE_ADDRESS] =
+        SIG(C_IS, "GradeSourceAddress", 0U, 8U, 8U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 253U),
+    [PFE_CSIG_IS_FUEL_RATE_SOURCE] =
+        SIG(C_IS, "FuelRateSourceAddress", 0U, 16U, 8U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 253U),
+    [PFE_CSIG_IS_SPEED_SENDERS] =
+        SIG(C_IS, "SpeedSenders", 0U, 24U, 4U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, PFE_INPUT_SENDERS_MAX),
+    [PFE_CSIG_IS_GRADE_SENDERS] =
+        SIG(C_IS, "GradeSenders", 0U, 28U, 4U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, PFE_INPUT_SENDERS_MAX),
+    [PFE_CSIG_IS_GRADE_SOURCE] =
+        SIG(C_IS, "GradeSource", 0U, 32U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_GRADE_SOURCE_NONE),
+    [PFE_CSIG_IS_MASS_SOURCE] =
+        SIG(C_IS, "MassSource", 0U, 40U, 4U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, PFE_MASS_SOURCE_IDENTIFIED),
+    [PFE_CSIG_IS_IDENTIFICATION_STATE] =
+        SIG(C_IS, "IdentificationState", 0U, 44U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_IS_VEHICLE_MASS] =
+        SIG(C_IS, "VehicleMass", 0U, 48U, 16U, NOMUX, J1939, 10, 1, 0, 1, 0U, RAW16_MAX),
+    [PFE_CSIG_DS_RX_FIFO_OVERRUNS] =
+        SIG(C_DS, "RxFifoOverruns", 0U, 0U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
+    [PFE_CSIG_DS_BUS_OFF_EVENTS] =
+        SIG(C_DS, "BusOffEvents", 0U, 8U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
+    [PFE_CSIG_DS_ERROR_WARNING] =
+        SIG(C_DS, "ErrorWarning", 0U, 16U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_DS_ERROR_PASSIVE] =
+        SIG(C_DS, "ErrorPassive", 0U, 18U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_DS_BUS_OFF] =
+        SIG(C_DS, "BusOff", 0U, 20U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_DS_NVM_WRITE_FAILING] =
+        SIG(C_DS, "NvmWriteFailing", 0U, 22U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
+    [PFE_CSIG_DS_RESET_CAUSE] =
+        SIG(C_DS, "ResetCause", 0U, 24U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, 3U),
+    [PFE_CSIG_DS_TX_ERROR_COUNTER] =
+        SIG(C_DS, "TxErrorCounter", 0U, 32U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
+    [PFE_CSIG_DS_RX_ERROR_COUNTER] =
+        SIG(C_DS, "RxErrorCounter", 0U, 40U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
+    [PFE_CSIG_DS_NVM_WRITE_FAILURES] =
+        SIG(C_DS, "NvmWriteFailures", 0U, 48U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
 };
 
 const uint32_t pfe_codec_signal_count = (uint32_t)PFE_CODEC_SIGNAL_COUNT;
@@ -1097,6 +1174,8 @@ int pfe_codec_decode_status(const pfe_can_frame_t *frame, pfe_msg_status_t *out)
     out->speed_clamped = u32_na;
     out->grade_clamped = u32_na;
     out->output_saturated = u32_na;
+    out->inputs_rejected = u32_na;
+    out->address_conflicts = u32_na;
     const int rc = check_frame(frame, PFE_MSG_STATUS);
     if (rc != PFE_OK) {
         return rc;
@@ -1113,6 +1192,8 @@ int pfe_codec_decode_status(const pfe_can_frame_t *frame, pfe_msg_status_t *out)
     out->speed_clamped = dec_u32(frame, PFE_CSIG_ST_SPEED_CLAMPED);                       /* PFE_Status.SpeedClamped */
     out->grade_clamped = dec_u32(frame, PFE_CSIG_ST_GRADE_CLAMPED);                       /* PFE_Status.GradeClamped */
     out->output_saturated = dec_u32(frame, PFE_CSIG_ST_OUTPUT_SATURATED);                 /* PFE_Status.OutputSaturated */
+    out->inputs_rejected = dec_u32(frame, PFE_CSIG_ST_INPUTS_REJECTED);                   /* PFE_Status.InputsRejected */
+    out->address_conflicts = dec_u32(frame, PFE_CSIG_ST_ADDRESS_CONFLICTS);               /* PFE_Status.AddressConflicts */
     return PFE_OK;
 }
 
@@ -1148,6 +1229,10 @@ int pfe_codec_encode_status(pfe_can_frame_t *frame, const pfe_msg_status_t *in, 
     enc_put(&e, PFE_CSIG_ST_GRADE_CLAMPED, in->grade_clamped.state, (int64_t)in->grade_clamped.value);
     enc_put(&e, PFE_CSIG_ST_OUTPUT_SATURATED, in->output_saturated.state,
             (int64_t)in->output_saturated.value);
+    enc_put(&e, PFE_CSIG_ST_INPUTS_REJECTED, in->inputs_rejected.state,
+            (int64_t)in->inputs_rejected.value);
+    enc_put(&e, PFE_CSIG_ST_ADDRESS_CONFLICTS, in->address_conflicts.state,
+            (int64_t)in->address_conflicts.value);
     return enc_end(&e);
 }
 
@@ -1270,5 +1355,252 @@ int pfe_codec_encode_request(pfe_can_frame_t *frame, uint32_t pgn, uint8_t desti
         return PFE_EINVAL;
     }
     enc_put(&e, PFE_CSIG_RQST_REQUESTED_PGN, PFE_SIG_VALID, (int64_t)pgn);
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ VDS */
+
+static int32_t mdeg_of_raw128(uint32_t raw)          /* 1/128 deg = 125/16 mdeg, rounded */
+{
+    const uint32_t mdeg = ((raw * 125U) + 8U) / 16U; /* raw <= 0xFAFF: below 2^23 */
+    return (int32_t)mdeg;
+}
+
+static pfe_sig_i32_t dec_i32_affine(const pfe_can_frame_t *frame, pfe_sig_index_t i,
+                                    int32_t (*of_raw)(uint32_t), int32_t offset)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = get_raw(frame, i, &raw);
+    const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? (of_raw(raw) + offset) : 0, st};
+    return out;
+}
+
+static int32_t mm_of_raw_altitude(uint32_t raw)      /* 0.125 m = 125 mm */
+{
+    const uint32_t mm = raw * 125U; /* raw <= 0xFAFF: below 2^23 */
+    return (int32_t)mm;
+}
+
+int pfe_codec_decode_vds(const pfe_can_frame_t *frame, pfe_msg_vds_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->bearing_mdeg = u32_na;
+    out->nav_speed_mm_s = i32_na;
+    out->pitch_mdeg = i32_na;
+    out->altitude_mm = i32_na;
+    const int rc = check_frame(frame, PFE_MSG_VDS);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    const pfe_sig_i32_t bearing =
+        dec_i32_affine(frame, PFE_CSIG_VDS_COMPASS_BEARING, mdeg_of_raw128, 0); /* VDS.CompassBearing (SPN 165) */
+    out->bearing_mdeg.value = (uint32_t)bearing.value;
+    out->bearing_mdeg.state = bearing.state;
+    out->nav_speed_mm_s = dec_speed(frame, PFE_CSIG_VDS_NAV_SPEED);             /* VDS.NavigationBasedVehicleSpeed (SPN 517) */
+    out->pitch_mdeg = dec_i32_affine(frame, PFE_CSIG_VDS_PITCH, mdeg_of_raw128, -200000); /* VDS.Pitch (SPN 583) */
+    out->altitude_mm =
+        dec_i32_affine(frame, PFE_CSIG_VDS_ALTITUDE, mm_of_raw_altitude, -2500000); /* VDS.Altitude (SPN 580) */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_vds(pfe_can_frame_t *frame, const pfe_msg_vds_t *in, uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) || (enc_begin(&e, frame, PFE_MSG_VDS, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_VDS_COMPASS_BEARING, in->bearing_mdeg.state,
+            div_round_i64((int64_t)in->bearing_mdeg.value * 16, 125));
+    enc_put(&e, PFE_CSIG_VDS_NAV_SPEED, in->nav_speed_mm_s.state,
+            raw_of_speed_mm_s(in->nav_speed_mm_s.value));
+    enc_put(&e, PFE_CSIG_VDS_PITCH, in->pitch_mdeg.state,
+            div_round_i64(((int64_t)in->pitch_mdeg.value + 200000) * 16, 125));
+    enc_put(&e, PFE_CSIG_VDS_ALTITUDE, in->altitude_mm.state,
+            div_round_i64((int64_t)in->altitude_mm.value + 2500000, 125));
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ CVW */
+
+int pfe_codec_decode_cvw(const pfe_can_frame_t *frame, pfe_msg_cvw_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->powered_vehicle_kg = u32_na;
+    out->gross_combination_kg = u32_na;
+    const int rc = check_frame(frame, PFE_MSG_CVW);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->powered_vehicle_kg = dec_u32_times(frame, PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT, 10U);     /* CVW.PoweredVehicleWeight (SPN 1585) */
+    out->gross_combination_kg = dec_u32_times(frame, PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT, 10U); /* CVW.GrossCombinationVehicleWeight (SPN 1760) */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_cvw(pfe_can_frame_t *frame, const pfe_msg_cvw_t *in, uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) || (enc_begin(&e, frame, PFE_MSG_CVW, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT, in->powered_vehicle_kg.state,
+            raw_of_unsigned(in->powered_vehicle_kg.value, 10U));
+    enc_put(&e, PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT, in->gross_combination_kg.state,
+            raw_of_unsigned(in->gross_combination_kg.value, 10U));
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ PFE_OwnFuel */
+
+int pfe_codec_decode_own_fuel(const pfe_can_frame_t *frame, pfe_msg_own_fuel_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->fuel_rate_nl_s = u32_na;
+    out->fuel_used_ul = u64_na;
+    out->model_identified = u32_na;
+    const int rc = check_frame(frame, PFE_MSG_OWN_FUEL);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->fuel_rate_nl_s = dec_fuel_rate(frame, PFE_CSIG_OF_OWN_FUEL_RATE);               /* PFE_OwnFuel.OwnFuelRate */
+    out->fuel_used_ul = dec_u64_times(frame, PFE_CSIG_OF_OWN_TOTAL_FUEL_USED, 1000U);    /* PFE_OwnFuel.OwnTotalFuelUsed */
+    out->model_identified = dec_u32(frame, PFE_CSIG_OF_MODEL_IDENTIFIED);                /* PFE_OwnFuel.ModelIdentified */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_own_fuel(pfe_can_frame_t *frame, const pfe_msg_own_fuel_t *in, uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) ||
+        (enc_begin(&e, frame, PFE_MSG_OWN_FUEL, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_OF_OWN_FUEL_RATE, in->fuel_rate_nl_s.state,
+            raw_of_fuel_rate_nl_s(in->fuel_rate_nl_s.value));
+    enc_put(&e, PFE_CSIG_OF_OWN_TOTAL_FUEL_USED, in->fuel_used_ul.state,
+            raw_of_unsigned(in->fuel_used_ul.value, 1000U));
+    enc_put(&e, PFE_CSIG_OF_MODEL_IDENTIFIED, in->model_identified.state,
+            (int64_t)in->model_identified.value);
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ PFE_InputStatus */
+
+int pfe_codec_decode_input_status(const pfe_can_frame_t *frame, pfe_msg_input_status_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->speed_source = u32_na;
+    out->grade_source_address = u32_na;
+    out->fuel_rate_source = u32_na;
+    out->speed_senders = u32_na;
+    out->grade_senders = u32_na;
+    out->grade_source = u32_na;
+    out->mass_source = u32_na;
+    out->identification = u32_na;
+    out->vehicle_mass_kg = u32_na;
+    const int rc = check_frame(frame, PFE_MSG_INPUT_STATUS);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->speed_source = dec_u32(frame, PFE_CSIG_IS_SPEED_SOURCE);                 /* PFE_InputStatus.SpeedSourceAddress */
+    out->grade_source_address = dec_u32(frame, PFE_CSIG_IS_GRADE_SOURCE_ADDRESS); /* PFE_InputStatus.GradeSourceAddress */
+    out->fuel_rate_source = dec_u32(frame, PFE_CSIG_IS_FUEL_RATE_SOURCE);         /* PFE_InputStatus.FuelRateSourceAddress */
+    out->speed_senders = dec_u32(frame, PFE_CSIG_IS_SPEED_SENDERS);               /* PFE_InputStatus.SpeedSenders */
+    out->grade_senders = dec_u32(frame, PFE_CSIG_IS_GRADE_SENDERS);               /* PFE_InputStatus.GradeSenders */
+    out->grade_source = dec_u32(frame, PFE_CSIG_IS_GRADE_SOURCE);                 /* PFE_InputStatus.GradeSource */
+    out->mass_source = dec_u32(frame, PFE_CSIG_IS_MASS_SOURCE);                   /* PFE_InputStatus.MassSource */
+    out->identification = dec_u32(frame, PFE_CSIG_IS_IDENTIFICATION_STATE);       /* PFE_InputStatus.IdentificationState */
+    out->vehicle_mass_kg = dec_u32_times(frame, PFE_CSIG_IS_VEHICLE_MASS, 10U);   /* PFE_InputStatus.VehicleMass */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_input_status(pfe_can_frame_t *frame, const pfe_msg_input_status_t *in,
+                                  uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) ||
+        (enc_begin(&e, frame, PFE_MSG_INPUT_STATUS, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_IS_SPEED_SOURCE, in->speed_source.state, (int64_t)in->speed_source.value);
+    enc_put(&e, PFE_CSIG_IS_GRADE_SOURCE_ADDRESS, in->grade_source_address.state,
+            (int64_t)in->grade_source_address.value);
+    enc_put(&e, PFE_CSIG_IS_FUEL_RATE_SOURCE, in->fuel_rate_source.state,
+            (int64_t)in->fuel_rate_source.value);
+    enc_put(&e, PFE_CSIG_IS_SPEED_SENDERS, in->speed_senders.state, (int64_t)in->speed_senders.value);
+    enc_put(&e, PFE_CSIG_IS_GRADE_SENDERS, in->grade_senders.state, (int64_t)in->grade_senders.value);
+    enc_put(&e, PFE_CSIG_IS_GRADE_SOURCE, in->grade_source.state, (int64_t)in->grade_source.value);
+    enc_put(&e, PFE_CSIG_IS_MASS_SOURCE, in->mass_source.state, (int64_t)in->mass_source.value);
+    enc_put(&e, PFE_CSIG_IS_IDENTIFICATION_STATE, in->identification.state,
+            (int64_t)in->identification.value);
+    enc_put(&e, PFE_CSIG_IS_VEHICLE_MASS, in->vehicle_mass_kg.state,
+            raw_of_unsigned(in->vehicle_mass_kg.value, 10U));
+    return enc_end(&e);
+}
+
+/* ------------------------------------------------------------ PFE_DeviceStatus */
+
+int pfe_codec_decode_device_status(const pfe_can_frame_t *frame, pfe_msg_device_status_t *out)
+{
+    if (out == NULL) {
+        return PFE_EINVAL;
+    }
+    out->rx_fifo_overruns = u32_na;
+    out->bus_off_events = u32_na;
+    out->error_warning = u32_na;
+    out->error_passive = u32_na;
+    out->bus_off = u32_na;
+    out->nvm_write_failing = u32_na;
+    out->reset_cause = u32_na;
+    out->tx_error_counter = u32_na;
+    out->rx_error_counter = u32_na;
+    out->nvm_write_failures = u32_na;
+    const int rc = check_frame(frame, PFE_MSG_DEVICE_STATUS);
+    if (rc != PFE_OK) {
+        return rc;
+    }
+    out->rx_fifo_overruns = dec_u32(frame, PFE_CSIG_DS_RX_FIFO_OVERRUNS);     /* PFE_DeviceStatus.RxFifoOverruns */
+    out->bus_off_events = dec_u32(frame, PFE_CSIG_DS_BUS_OFF_EVENTS);         /* PFE_DeviceStatus.BusOffEvents */
+    out->error_warning = dec_u32(frame, PFE_CSIG_DS_ERROR_WARNING);           /* PFE_DeviceStatus.ErrorWarning */
+    out->error_passive = dec_u32(frame, PFE_CSIG_DS_ERROR_PASSIVE);           /* PFE_DeviceStatus.ErrorPassive */
+    out->bus_off = dec_u32(frame, PFE_CSIG_DS_BUS_OFF);                       /* PFE_DeviceStatus.BusOff */
+    out->nvm_write_failing = dec_u32(frame, PFE_CSIG_DS_NVM_WRITE_FAILING);   /* PFE_DeviceStatus.NvmWriteFailing */
+    out->reset_cause = dec_u32(frame, PFE_CSIG_DS_RESET_CAUSE);               /* PFE_DeviceStatus.ResetCause */
+    out->tx_error_counter = dec_u32(frame, PFE_CSIG_DS_TX_ERROR_COUNTER);     /* PFE_DeviceStatus.TxErrorCounter */
+    out->rx_error_counter = dec_u32(frame, PFE_CSIG_DS_RX_ERROR_COUNTER);     /* PFE_DeviceStatus.RxErrorCounter */
+    out->nvm_write_failures = dec_u32(frame, PFE_CSIG_DS_NVM_WRITE_FAILURES); /* PFE_DeviceStatus.NvmWriteFailures */
+    return PFE_OK;
+}
+
+int pfe_codec_encode_device_status(pfe_can_frame_t *frame, const pfe_msg_device_status_t *in,
+                                   uint8_t source)
+{
+    enc_t e;
+    if ((in == NULL) ||
+        (enc_begin(&e, frame, PFE_MSG_DEVICE_STATUS, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    enc_put(&e, PFE_CSIG_DS_RX_FIFO_OVERRUNS, in->rx_fifo_overruns.state,
+            (int64_t)in->rx_fifo_overruns.value);
+    enc_put(&e, PFE_CSIG_DS_BUS_OFF_EVENTS, in->bus_off_events.state, (int64_t)in->bus_off_events.value);
+    enc_put(&e, PFE_CSIG_DS_ERROR_WARNING, in->error_warning.state, (int64_t)in->error_warning.value);
+    enc_put(&e, PFE_CSIG_DS_ERROR_PASSIVE, in->error_passive.state, (int64_t)in->error_passive.value);
+    enc_put(&e, PFE_CSIG_DS_BUS_OFF, in->bus_off.state, (int64_t)in->bus_off.value);
+    enc_put(&e, PFE_CSIG_DS_NVM_WRITE_FAILING, in->nvm_write_failing.state,
+            (int64_t)in->nvm_write_failing.value);
+    enc_put(&e, PFE_CSIG_DS_RESET_CAUSE, in->reset_cause.state, (int64_t)in->reset_cause.value);
+    enc_put(&e, PFE_CSIG_DS_TX_ERROR_COUNTER, in->tx_error_counter.state,
+            (int64_t)in->tx_error_counter.value);
+    enc_put(&e, PFE_CSIG_DS_RX_ERROR_COUNTER, in->rx_error_counter.state,
+            (int64_t)in->rx_error_counter.value);
+    enc_put(&e, PFE_CSIG_DS_NVM_WRITE_FAILURES, in->nvm_write_failures.state,
+            (int64_t)in->nvm_write_failures.value);
     return enc_end(&e);
 }

@@ -91,6 +91,11 @@ typedef struct {
 #define PFE_PGN_STATUS 65284UL           /* 0xFF04 */
 #define PFE_PGN_ADDRESS_CLAIMED 60928UL  /* 0xEE00, PDU1 */
 #define PFE_PGN_REQUEST 59904UL          /* 0xEA00, PDU1 */
+#define PFE_PGN_VDS 65256UL              /* 0xFEE8, Vehicle Direction/Speed */
+#define PFE_PGN_CVW 65136UL              /* 0xFE70, Combination Vehicle Weight */
+#define PFE_PGN_OWN_FUEL 65285UL         /* 0xFF05 */
+#define PFE_PGN_INPUT_STATUS 65286UL     /* 0xFF06 */
+#define PFE_PGN_DEVICE_STATUS 65287UL    /* 0xFF07 */
 
 /* The module's default source address (it claims it with AddressClaimed). */
 #define PFE_CODEC_DEFAULT_ADDRESS 0x8CU
@@ -110,6 +115,11 @@ typedef enum {
     PFE_MSG_STATUS,
     PFE_MSG_ADDRESS_CLAIMED,
     PFE_MSG_REQUEST,
+    PFE_MSG_VDS,
+    PFE_MSG_CVW,
+    PFE_MSG_OWN_FUEL,
+    PFE_MSG_INPUT_STATUS,
+    PFE_MSG_DEVICE_STATUS,
     PFE_MSG_COUNT
 } pfe_msg_index_t;
 
@@ -208,6 +218,8 @@ typedef enum {
     PFE_CSIG_ST_SPEED_CLAMPED,
     PFE_CSIG_ST_GRADE_CLAMPED,
     PFE_CSIG_ST_OUTPUT_SATURATED,
+    PFE_CSIG_ST_INPUTS_REJECTED,
+    PFE_CSIG_ST_ADDRESS_CONFLICTS,
     PFE_CSIG_AC_IDENTITY_NUMBER,
     PFE_CSIG_AC_MANUFACTURER_CODE,
     PFE_CSIG_AC_ECU_INSTANCE,
@@ -219,6 +231,34 @@ typedef enum {
     PFE_CSIG_AC_INDUSTRY_GROUP,
     PFE_CSIG_AC_ARBITRARY_ADDRESS_CAPABLE,
     PFE_CSIG_RQST_REQUESTED_PGN,
+    PFE_CSIG_VDS_COMPASS_BEARING,
+    PFE_CSIG_VDS_NAV_SPEED,
+    PFE_CSIG_VDS_PITCH,
+    PFE_CSIG_VDS_ALTITUDE,
+    PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT,
+    PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT,
+    PFE_CSIG_OF_OWN_FUEL_RATE,
+    PFE_CSIG_OF_OWN_TOTAL_FUEL_USED,
+    PFE_CSIG_OF_MODEL_IDENTIFIED,
+    PFE_CSIG_IS_SPEED_SOURCE,
+    PFE_CSIG_IS_GRADE_SOURCE_ADDRESS,
+    PFE_CSIG_IS_FUEL_RATE_SOURCE,
+    PFE_CSIG_IS_SPEED_SENDERS,
+    PFE_CSIG_IS_GRADE_SENDERS,
+    PFE_CSIG_IS_GRADE_SOURCE,
+    PFE_CSIG_IS_MASS_SOURCE,
+    PFE_CSIG_IS_IDENTIFICATION_STATE,
+    PFE_CSIG_IS_VEHICLE_MASS,
+    PFE_CSIG_DS_RX_FIFO_OVERRUNS,
+    PFE_CSIG_DS_BUS_OFF_EVENTS,
+    PFE_CSIG_DS_ERROR_WARNING,
+    PFE_CSIG_DS_ERROR_PASSIVE,
+    PFE_CSIG_DS_BUS_OFF,
+    PFE_CSIG_DS_NVM_WRITE_FAILING,
+    PFE_CSIG_DS_RESET_CAUSE,
+    PFE_CSIG_DS_TX_ERROR_COUNTER,
+    PFE_CSIG_DS_RX_ERROR_COUNTER,
+    PFE_CSIG_DS_NVM_WRITE_FAILURES,
     PFE_CODEC_SIGNAL_COUNT
 } pfe_sig_index_t;
 
@@ -452,6 +492,8 @@ typedef struct {
     pfe_sig_u32_t speed_clamped;
     pfe_sig_u32_t grade_clamped;
     pfe_sig_u32_t output_saturated;
+    pfe_sig_u32_t inputs_rejected;         /* counter, 0 .. PFE_STATUS_COUNTER_MAX */
+    pfe_sig_u32_t address_conflicts;       /* counter, 0 .. PFE_STATUS_COUNTER_MAX */
 } pfe_msg_status_t;
 
 int pfe_codec_decode_status(const pfe_can_frame_t *frame, pfe_msg_status_t *out);
@@ -497,5 +539,86 @@ int pfe_codec_decode_request(const pfe_can_frame_t *frame, pfe_msg_request_t *ou
 /* 3-byte Request for pgn (<= 0x3FFFF, else PFE_EINVAL), priority 6. */
 int pfe_codec_encode_request(pfe_can_frame_t *frame, uint32_t pgn, uint8_t destination,
                              uint8_t source);
+
+/* ------------------------------------------------------------ VDS (input) */
+
+typedef struct {
+    pfe_sig_u32_t bearing_mdeg;     /* SPN 165; 1/128 deg, rounded to 0.001 deg; 0 .. 501992 */
+    pfe_sig_i32_t nav_speed_mm_s;   /* SPN 517; 1/256 km/h, as CCVS1 */
+    pfe_sig_i32_t pitch_mdeg;       /* SPN 583; 1/128 deg - 200 deg, rounded; -200000 .. 301992 */
+    pfe_sig_i32_t altitude_mm;      /* SPN 580; 0.125 m = 125 mm, offset -2500 m; -2500000 .. 5531875 */
+} pfe_msg_vds_t;
+
+int pfe_codec_decode_vds(const pfe_can_frame_t *frame, pfe_msg_vds_t *out);
+int pfe_codec_encode_vds(pfe_can_frame_t *frame, const pfe_msg_vds_t *in, uint8_t source);
+
+/* ------------------------------------------------------------ CVW (input) */
+
+typedef struct {
+    pfe_sig_u32_t powered_vehicle_kg;     /* SPN 1585; 10 kg; 0 .. 642550 */
+    pfe_sig_u32_t gross_combination_kg;   /* SPN 1760; 10 kg; 0 .. 642550 */
+} pfe_msg_cvw_t;
+
+int pfe_codec_decode_cvw(const pfe_can_frame_t *frame, pfe_msg_cvw_t *out);
+int pfe_codec_encode_cvw(pfe_can_frame_t *frame, const pfe_msg_cvw_t *in, uint8_t source);
+
+/* ------------------------------------------------------------ PFE_OwnFuel (output) */
+
+typedef struct {
+    pfe_sig_u32_t fuel_rate_nl_s;   /* 0.05 L/h, as LFE1 */
+    pfe_sig_u64_t fuel_used_ul;     /* 0.001 L, as HRLFC */
+    pfe_sig_u32_t model_identified; /* 0 calibrated, 1 identified */
+} pfe_msg_own_fuel_t;
+
+int pfe_codec_decode_own_fuel(const pfe_can_frame_t *frame, pfe_msg_own_fuel_t *out);
+int pfe_codec_encode_own_fuel(pfe_can_frame_t *frame, const pfe_msg_own_fuel_t *in, uint8_t source);
+
+/* ------------------------------------------------------------ PFE_InputStatus (output) */
+
+#define PFE_GRADE_SOURCE_SLOPE_SENSOR 0U
+#define PFE_GRADE_SOURCE_ALTITUDE 1U
+#define PFE_GRADE_SOURCE_ASSUMED_FLAT 2U
+#define PFE_GRADE_SOURCE_NONE 3U
+
+#define PFE_MASS_SOURCE_CALIBRATION 0U
+#define PFE_MASS_SOURCE_CVW 1U
+#define PFE_MASS_SOURCE_IDENTIFIED 2U
+
+#define PFE_INPUT_SENDERS_MAX 15U
+
+typedef struct {
+    pfe_sig_u32_t speed_source;     /* source address 0 .. 253; NOT_AVAILABLE: none */
+    pfe_sig_u32_t grade_source_address;
+    pfe_sig_u32_t fuel_rate_source;
+    pfe_sig_u32_t speed_senders;    /* 0 .. PFE_INPUT_SENDERS_MAX */
+    pfe_sig_u32_t grade_senders;
+    pfe_sig_u32_t grade_source;     /* PFE_GRADE_SOURCE_* */
+    pfe_sig_u32_t mass_source;      /* PFE_MASS_SOURCE_* */
+    pfe_sig_u32_t identification;   /* 0 learning, 1 converged */
+    pfe_sig_u32_t vehicle_mass_kg;  /* 10 kg, rounded; 0 .. 642550 */
+} pfe_msg_input_status_t;
+
+int pfe_codec_decode_input_status(const pfe_can_frame_t *frame, pfe_msg_input_status_t *out);
+int pfe_codec_encode_input_status(pfe_can_frame_t *frame, const pfe_msg_input_status_t *in,
+                                  uint8_t source);
+
+/* ------------------------------------------------------------ PFE_DeviceStatus (output) */
+
+typedef struct {
+    pfe_sig_u32_t rx_fifo_overruns;   /* counter, 0 .. PFE_STATUS_COUNTER_MAX */
+    pfe_sig_u32_t bus_off_events;     /* counter */
+    pfe_sig_u32_t error_warning;      /* 0 off, 1 on */
+    pfe_sig_u32_t error_passive;
+    pfe_sig_u32_t bus_off;
+    pfe_sig_u32_t nvm_write_failing;
+    pfe_sig_u32_t reset_cause;        /* 0 power-on, 1 watchdog, 2 software, 3 other */
+    pfe_sig_u32_t tx_error_counter;   /* 0 .. 250 */
+    pfe_sig_u32_t rx_error_counter;
+    pfe_sig_u32_t nvm_write_failures; /* counter */
+} pfe_msg_device_status_t;
+
+int pfe_codec_decode_device_status(const pfe_can_frame_t *frame, pfe_msg_device_status_t *out);
+int pfe_codec_encode_device_status(pfe_can_frame_t *frame, const pfe_msg_device_status_t *in,
+                                   uint8_t source);
 
 #endif /* PFE_CODEC_H */

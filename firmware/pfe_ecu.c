@@ -6,8 +6,6 @@
 
 #include "pfe_fixed.h"
 
-#define SPEED_PERIOD_US 100000U    /* CCVS1 */
-#define GRADE_PERIOD_US 10000U     /* SSI */
 #define CONFIG_PERIOD_US 1000000U  /* PFE_PlatoonConfig */
 #define TICKS_PER_100MS 10U
 #define TICKS_PER_1S 100U
@@ -15,10 +13,21 @@
 #define ARBITRARY_LAST 247U
 
 /* Output messages, one bit each in request_pending. */
-enum { OUT_LFE1, OUT_PLATOON_FUEL, OUT_HRLFC, OUT_PREDICTION, OUT_STATUS, OUT_COUNT };
+enum {
+    OUT_LFE1,
+    OUT_PLATOON_FUEL,
+    OUT_HRLFC,
+    OUT_PREDICTION,
+    OUT_STATUS,
+    OUT_OWN_FUEL,
+    OUT_INPUT_STATUS,
+    OUT_DEVICE_STATUS,
+    OUT_COUNT
+};
 
-static const uint32_t k_out_pgn[OUT_COUNT] = {PFE_PGN_LFE1, PFE_PGN_PLATOON_FUEL, PFE_PGN_HRLFC,
-                                              PFE_PGN_FUEL_PREDICTION, PFE_PGN_STATUS};
+static const uint32_t k_out_pgn[OUT_COUNT] = {
+    PFE_PGN_LFE1,     PFE_PGN_PLATOON_FUEL, PFE_PGN_HRLFC,        PFE_PGN_FUEL_PREDICTION,
+    PFE_PGN_STATUS,   PFE_PGN_OWN_FUEL,     PFE_PGN_INPUT_STATUS, PFE_PGN_DEVICE_STATUS};
 
 #define PDU2_MASK (PFE_CAN_EFF_FLAG | 0x03FFFF00UL) /* EDP, DP, PF, PS */
 #define PDU1_MASK (PFE_CAN_EFF_FLAG | 0x03FF0000UL) /* EDP, DP, PF: any destination */
@@ -30,6 +39,10 @@ const pfe_ecu_filter_t pfe_ecu_rx_filters[PFE_ECU_RX_FILTERS] = {
     {PFE_CAN_EFF_FLAG | (PFE_PGN_GRADE_PREVIEW << 8), PDU2_MASK},
     {PFE_CAN_EFF_FLAG | (PFE_PGN_REQUEST << 8), PDU1_MASK},
     {PFE_CAN_EFF_FLAG | (PFE_PGN_ADDRESS_CLAIMED << 8), PDU1_MASK},
+    {PFE_CAN_EFF_FLAG | (PFE_PGN_VDS << 8), PDU2_MASK},
+    {PFE_CAN_EFF_FLAG | (PFE_PGN_CVW << 8), PDU2_MASK},
+    {PFE_CAN_EFF_FLAG | (PFE_PGN_LFE1 << 8), PDU2_MASK},
+    {PFE_CAN_EFF_FLAG | (PFE_PGN_HRLFC << 8), PDU2_MASK},
 };
 
 static void count_up(uint32_t *c, uint32_t n)
@@ -37,16 +50,31 @@ static void count_up(uint32_t *c, uint32_t n)
     *c = (*c > (UINT32_MAX - n)) ? UINT32_MAX : (*c + n);
 }
 
-/* Makes ecu->platoon_next (built) the model, the own truck at `position`.
- * Totals carry over a change of platoon: the own truck's to its new
- * position. Read before the platoon changes: the estimator reads a
- * position's total only below the platoon's size. */
-static void adopt_platoon(pfe_ecu_t *ecu, const pfe_platoon_t *next, uint32_t position)
+/* The platoon's calibrations: each position's, the own truck's at its own. */
+static void platoon_config(const pfe_ecu_t *ecu, pfe_platoon_config_t *pc, uint32_t n,
+                           uint32_t position, uint32_t gap_mm)
+{
+    pfe_platoon_config_uniform(pc, n, gap_mm, ecu->cfg.vehicle, ecu->cfg.env, ecu->cfg.drag);
+    for (uint32_t k = 0U; k < pc->n_vehicles; k++) {
+        if (ecu->cfg.vehicle_at[k] != NULL) {
+            pc->vehicle[k] = ecu->cfg.vehicle_at[k];
+        }
+    }
+    if (position < pc->n_vehicles) {
+        pc->vehicle[position] = &ecu->own_calib;
+    }
+}
+
+/* The platoon at once (start-up). Totals carry over: the own truck's to
+ * its new position. */
+static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
 {
     const uint64_t own = pfe_ecu_own_fuel_ul(ecu);
     const uint64_t platoon = pfe_ecu_platoon_fuel_ul(ecu);
-    if (next != &ecu->platoon) {
-        ecu->platoon = *next;
+    pfe_platoon_config_t pc;
+    platoon_config(ecu, &pc, n, position, gap_mm);
+    if ((pc.n_vehicles != n) || (position >= n) || (pfe_platoon_init(&ecu->platoon, &pc) != PFE_OK)) {
+        return PFE_EINVAL;
     }
     /* The prediction in progress was for the old platoon. */
     pfe_predict_cancel(&ecu->predict);
@@ -54,62 +82,122 @@ static void adopt_platoon(pfe_ecu_t *ecu, const pfe_platoon_t *next, uint32_t po
     ecu->own_position = position;
     (void)pfe_estimator_set_fuel_used_ul(&ecu->est, (int32_t)position, own);
     (void)pfe_estimator_set_fuel_used_ul(&ecu->est, PFE_EST_PLATOON, platoon);
-}
-
-/* The platoon at once (start-up). */
-static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
-{
-    pfe_platoon_config_t pc;
-    pfe_platoon_config_uniform(&pc, n, gap_mm, ecu->cfg.vehicle, ecu->cfg.env, ecu->cfg.drag);
-    if ((pc.n_vehicles != n) || (position >= n) || (pfe_platoon_init(&ecu->platoon_next, &pc) != PFE_OK)) {
-        return PFE_EINVAL;
-    }
-    adopt_platoon(ecu, &ecu->platoon_next, position);
     return PFE_OK;
 }
 
-/* The platoon of a PFE_PlatoonConfig, built over the next ticks
- * (rebuild_step()) into platoon_next while the old one runs. */
+/*
+ * The platoon of a PFE_PlatoonConfig, built in place over the next ticks
+ * (rebuild_step()): the estimator would start again on it anyway, so it
+ * pauses meanwhile (outputs not available, totals held as they were at the
+ * start); the prediction in progress is abandoned. A second configuration
+ * during the build starts it again, the totals kept.
+ */
 static int rebuild_start(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
 {
-    pfe_platoon_config_t *pc = &ecu->platoon_next_cfg;
-    pfe_platoon_config_uniform(pc, n, gap_mm, ecu->cfg.vehicle, ecu->cfg.env, ecu->cfg.drag);
-    ecu->platoon_building = false;
-    if ((pc->n_vehicles != n) || (position >= n) || (pfe_platoon_init_begin(pc) != PFE_OK)) {
+    pfe_platoon_config_t pc;
+    platoon_config(ecu, &pc, n, position, gap_mm);
+    if ((pc.n_vehicles != n) || (position >= n) || (pfe_platoon_init_begin(&pc) != PFE_OK)) {
         return PFE_EINVAL;
     }
-    ecu->platoon_next_position = position;
-    ecu->platoon_next_built = 0U;
+    if (!ecu->platoon_building) {
+        ecu->build_own_ul = pfe_ecu_own_fuel_ul(ecu);
+        ecu->build_platoon_ul = pfe_ecu_platoon_fuel_ul(ecu);
+        ecu->build_old_n = ecu->platoon.n_vehicles;
+        ecu->build_old_position = ecu->own_position;
+        ecu->build_old_gap_mm = ecu->platoon.gap_mm;
+        pfe_predict_cancel(&ecu->predict);
+    }
+    ecu->build_n = n;
+    ecu->build_position = position;
+    ecu->build_gap_mm = gap_mm;
+    ecu->build_done = 0U;
     ecu->platoon_building = true;
     return PFE_OK;
 }
 
-/* One tick's share of the rebuild: PFE_ECU_REBUILD_PER_TICK positions, or
- * the aggregates and the switch. Returns whether it did any work. */
+/* One tick's share of the build: PFE_ECU_REBUILD_PER_TICK positions, or the
+ * aggregates and the estimator started on them (PFE_ECU_REBUILD_PER_TICK
+ * trucks: about 5,000 Cortex-M4 instructions; the aggregates 3,000). A
+ * configuration that fails half-way brings the old platoon back at once.
+ * Returns whether it did any work. */
 static bool rebuild_step(pfe_ecu_t *ecu)
 {
     if (!ecu->platoon_building) {
         return false;
     }
-    const pfe_platoon_config_t *pc = &ecu->platoon_next_cfg;
+    pfe_platoon_config_t pc;
+    platoon_config(ecu, &pc, ecu->build_n, ecu->build_position, ecu->build_gap_mm);
     int rc = PFE_OK;
-    if (ecu->platoon_next_built < pc->n_vehicles) {
-        rc = pfe_platoon_init_positions(&ecu->platoon_next, pc, ecu->platoon_next_built,
-                                        PFE_ECU_REBUILD_PER_TICK);
-        ecu->platoon_next_built += PFE_ECU_REBUILD_PER_TICK;
+    bool finished = false;
+    if (ecu->build_done < ecu->build_n) {
+        rc = pfe_platoon_init_positions(&ecu->platoon, &pc, ecu->build_done, PFE_ECU_REBUILD_PER_TICK);
+        const uint32_t left = ecu->build_n - ecu->build_done;
+        ecu->build_done += (left < PFE_ECU_REBUILD_PER_TICK) ? left : PFE_ECU_REBUILD_PER_TICK;
     } else {
-        rc = pfe_platoon_init_finish(&ecu->platoon_next, pc);
-        if (rc == PFE_OK) {
-            adopt_platoon(ecu, &ecu->platoon_next, ecu->platoon_next_position);
-            ecu->degraded = false;
-        }
-        ecu->platoon_building = false;
+        rc = pfe_platoon_init_finish(&ecu->platoon, &pc);
+        finished = true;
     }
     if (rc != PFE_OK) {
         ecu->platoon_building = false;
         ecu->config.state = PFE_SIG_OUT_OF_RANGE;
+        (void)configure(ecu, ecu->build_old_n, ecu->build_old_position, ecu->build_old_gap_mm);
+        (void)pfe_estimator_set_fuel_used_ul(&ecu->est, (int32_t)ecu->own_position, ecu->build_own_ul);
+        (void)pfe_estimator_set_fuel_used_ul(&ecu->est, PFE_EST_PLATOON, ecu->build_platoon_ul);
+    } else if (finished) {
+        ecu->platoon_building = false;
+        (void)pfe_estimator_init(&ecu->est, &ecu->platoon);
+        ecu->own_position = ecu->build_position;
+        (void)pfe_estimator_set_fuel_used_ul(&ecu->est, (int32_t)ecu->build_position, ecu->build_own_ul);
+        (void)pfe_estimator_set_fuel_used_ul(&ecu->est, PFE_EST_PLATOON, ecu->build_platoon_ul);
+        ecu->degraded = false;
+    } else {
+        /* positions built, more to come */
     }
     return true;
+}
+
+/* The own truck's mass changed (CVW): the last of a tick waits for
+ * apply_own_mass() after the queue. */
+static void remodel_own_truck(pfe_ecu_t *ecu, uint32_t mass_kg, uint8_t source)
+{
+    ecu->mass_next_kg = mass_kg;
+    ecu->mass_next_source = source;
+    ecu->mass_next_pending = true;
+}
+
+/* The tick's last new mass: the own truck's position of the same platoon
+ * built again with it, and the aggregates (about 3,600 Cortex-M4
+ * instructions); the estimator keeps its filter and totals, the prediction
+ * restarts. During a build, the build starts again with it. */
+static void apply_own_mass(pfe_ecu_t *ecu)
+{
+    if (!ecu->mass_next_pending) {
+        return;
+    }
+    ecu->mass_next_pending = false;
+    pfe_vehicle_calib_t c = ecu->own_calib;
+    c.mass_kg = ecu->mass_next_kg;
+    if ((pfe_calib_check_vehicle(&c) != PFE_OK) || (c.mass_kg == ecu->own_calib.mass_kg)) {
+        return;
+    }
+    const pfe_vehicle_calib_t old = ecu->own_calib;
+    ecu->own_calib = c;
+    if (ecu->platoon_building) {
+        ecu->mass_source = ecu->mass_next_source;
+        (void)rebuild_start(ecu, ecu->build_n, ecu->build_position, ecu->build_gap_mm);
+        return;
+    }
+    pfe_platoon_config_t pc;
+    platoon_config(ecu, &pc, ecu->platoon.n_vehicles, ecu->own_position, ecu->platoon.gap_mm);
+    if ((pfe_platoon_init_positions(&ecu->platoon, &pc, ecu->own_position, 1U) != PFE_OK) ||
+        (pfe_platoon_init_finish(&ecu->platoon, &pc) != PFE_OK)) {
+        ecu->own_calib = old; /* a platoon the old mass built: build it again */
+        platoon_config(ecu, &pc, ecu->platoon.n_vehicles, ecu->own_position, ecu->platoon.gap_mm);
+        (void)pfe_platoon_init(&ecu->platoon, &pc);
+        return;
+    }
+    ecu->mass_source = ecu->mass_next_source;
+    pfe_predict_cancel(&ecu->predict);
 }
 
 int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_state_t *restored,
@@ -132,11 +220,24 @@ int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_stat
         (ecu->cfg.default_set_speed_mm_s > PFE_SPEED_MAX_MM_S)) {
         return PFE_EINVAL;
     }
+    const pfe_vehicle_calib_t *own = (cfg->own_vehicle != NULL) ? cfg->own_vehicle : cfg->vehicle;
+    if ((own == NULL) || (pfe_calib_check_vehicle(own) != PFE_OK) ||
+        ((uint32_t)cfg->j1939_fuel > (uint32_t)PFE_ECU_J1939_FUEL_NEVER)) {
+        return PFE_EINVAL;
+    }
+    ecu->own_calib = *own;
+    ecu->mass_source = (uint8_t)PFE_MASS_SOURCE_CALIBRATION;
+    for (uint32_t k = 0U; k < (uint32_t)PFE_IN_COUNT; k++) {
+        pfe_input_init(&ecu->in[k], (pfe_input_kind_t)k,
+                       cfg->input_source_fixed[k] ? cfg->input_source[k] : (uint8_t)PFE_INPUT_NO_SOURCE);
+    }
+    pfe_altgrade_init(&ecu->altgrade);
+    ecu->grade_source = (uint8_t)PFE_GRADE_SOURCE_NONE;
     pfe_predict_init(&ecu->predict);
     ecu->own_position = 0U;
     /* Fuel used before the first configure() is zero; configure() re-applies it. */
     pfe_platoon_config_t pc;
-    pfe_platoon_config_uniform(&pc, 1U, cfg->default_gap_mm, cfg->vehicle, cfg->env, cfg->drag);
+    platoon_config(ecu, &pc, 1U, 0U, cfg->default_gap_mm);
     if ((pfe_platoon_init(&ecu->platoon, &pc) != PFE_OK) ||
         (pfe_estimator_init(&ecu->est, &ecu->platoon) != PFE_OK)) {
         return PFE_EINVAL;
@@ -157,8 +258,7 @@ int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_stat
     ecu->claim_us = now_us;
     ecu->now_us = now_us;
     ecu->last_save_us = now_us;
-    ecu->speed.state = PFE_SIG_NOT_AVAILABLE;
-    ecu->grade.state = PFE_SIG_NOT_AVAILABLE;
+    ecu->start_us = now_us;
     ecu->config.state = PFE_SIG_NOT_AVAILABLE;
     ecu->preview.state = PFE_SIG_NOT_AVAILABLE;
     pfe_preview_init(&ecu->preview_buf);
@@ -197,6 +297,7 @@ static void on_address_claimed(pfe_ecu_t *ecu, const pfe_can_frame_t *f)
         (their_name == ecu->cfg.name)) {
         return;
     }
+    count_up(&ecu->conflicts, 1U);
     if (ecu->cfg.name < their_name) {
         ecu->claim_pending = true; /* we keep it: say so again */
         return;
@@ -281,15 +382,139 @@ static void apply_platoon_config(pfe_ecu_t *ecu)
     }
     /* Against the platoon being built, if one is, else the one running. */
     const bool building = ecu->platoon_building;
-    const uint32_t n = building ? ecu->platoon_next_cfg.n_vehicles : ecu->platoon.n_vehicles;
-    const uint32_t position = building ? ecu->platoon_next_position : ecu->own_position;
-    const uint32_t gap = building ? ecu->platoon_next_cfg.gap_mm : ecu->platoon.gap_mm;
+    const uint32_t n = building ? ecu->build_n : ecu->platoon.n_vehicles;
+    const uint32_t position = building ? ecu->build_position : ecu->own_position;
+    const uint32_t gap = building ? ecu->build_gap_mm : ecu->platoon.gap_mm;
     const bool changed = (ecu->degraded && !building) || (m.n_vehicles.value != n) ||
                          (m.own_position.value != position) || (gap_mm != gap);
     ecu->platoon_msg = m;
     if (changed && (rebuild_start(ecu, m.n_vehicles.value, m.own_position.value, gap_mm) != PFE_OK)) {
         ecu->config.state = PFE_SIG_OUT_OF_RANGE;
     }
+}
+
+/* A frame from another node carrying our source address (J1939-81): never
+ * an input. Counted; the module claims its address again, at most once per
+ * PFE_ECU_RECLAIM_MIN_US so that a flood of them cannot make it flood. */
+static void on_conflict(pfe_ecu_t *ecu)
+{
+    count_up(&ecu->conflicts, 1U);
+    if (!ecu->reclaimed || ((ecu->now_us - ecu->reclaim_us) >= PFE_ECU_RECLAIM_MIN_US)) {
+        ecu->claim_pending = true;
+        ecu->reclaim_us = ecu->now_us;
+        ecu->reclaimed = true;
+    }
+}
+
+/* One arbitrated input's frame; returns whether the input took a new value or state. */
+static bool take_input(pfe_ecu_t *ecu, pfe_input_kind_t kind, uint8_t sa, pfe_sig_state_t state,
+                       int32_t value, uint64_t rx_us)
+{
+    const pfe_input_verdict_t v = pfe_input_take(&ecu->in[kind], sa, state, value, rx_us);
+    return v == PFE_INPUT_ACCEPTED;
+}
+
+static void on_ccvs1(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint8_t sa, uint64_t rx_us)
+{
+    pfe_msg_ccvs1_t m;
+    if (pfe_codec_decode_ccvs1(f, &m) < 0) {
+        count_up(&ecu->count.rx_rejected, 1U);
+        return;
+    }
+    if (take_input(ecu, PFE_IN_SPEED, sa, m.speed_mm_s.state, m.speed_mm_s.value, rx_us) &&
+        (ecu->in[PFE_IN_SPEED].state == PFE_SIG_VALID)) {
+        ecu->speed_mm_s = m.speed_mm_s.value;
+        ecu->speed_fresh = true;
+    }
+}
+
+static void on_ssi(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint8_t sa, uint64_t rx_us)
+{
+    pfe_msg_ssi_t m;
+    if (pfe_codec_decode_ssi(f, &m) < 0) {
+        count_up(&ecu->count.rx_rejected, 1U);
+        return;
+    }
+    bool saturated = false;
+    const int32_t grade = pfe_codec_grade_ppm_from_pitch(m.pitch_udeg.value, &saturated);
+    if (take_input(ecu, PFE_IN_GRADE, sa, m.pitch_udeg.state, grade, rx_us)) {
+        ecu->grade_saturated = saturated && (m.pitch_udeg.state == PFE_SIG_VALID);
+    }
+}
+
+static void on_vds(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint8_t sa, uint64_t rx_us)
+{
+    pfe_msg_vds_t m;
+    if (pfe_codec_decode_vds(f, &m) < 0) {
+        count_up(&ecu->count.rx_rejected, 1U);
+        return;
+    }
+    if (take_input(ecu, PFE_IN_ALTITUDE, sa, m.altitude_mm.state, m.altitude_mm.value, rx_us)) {
+        if (ecu->in[PFE_IN_ALTITUDE].state == PFE_SIG_VALID) {
+            pfe_altgrade_sample(&ecu->altgrade, ecu->odometer_um / 1000U, m.altitude_mm.value);
+        } else {
+            pfe_altgrade_reset(&ecu->altgrade);
+        }
+    }
+}
+
+static void on_cvw(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint8_t sa, uint64_t rx_us)
+{
+    pfe_msg_cvw_t m;
+    if (pfe_codec_decode_cvw(f, &m) < 0) {
+        count_up(&ecu->count.rx_rejected, 1U);
+        return;
+    }
+    const pfe_sig_u32_t gcw = m.gross_combination_kg;
+    if (take_input(ecu, PFE_IN_MASS, sa, gcw.state, (int32_t)gcw.value, rx_us) &&
+        (ecu->in[PFE_IN_MASS].state == PFE_SIG_VALID)) {
+        remodel_own_truck(ecu, gcw.value, (uint8_t)PFE_MASS_SOURCE_CVW);
+    }
+}
+
+/* Another node's LFE1: the engine's measured fuel rate. */
+static void on_lfe1(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint8_t sa, uint64_t rx_us)
+{
+    pfe_msg_lfe1_t m;
+    if (pfe_codec_decode_lfe1(f, &m) < 0) {
+        count_up(&ecu->count.rx_rejected, 1U);
+        return;
+    }
+    ecu->other_lfe1_us = rx_us;
+    ecu->other_lfe1_seen = true;
+    (void)take_input(ecu, PFE_IN_ENGINE_FUEL, sa, m.fuel_rate_nl_s.state,
+                     (int32_t)m.fuel_rate_nl_s.value, rx_us);
+}
+
+static void on_hrlfc(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
+{
+    if (f->dlc != 8U) {
+        count_up(&ecu->count.rx_rejected, 1U);
+        return;
+    }
+    ecu->other_hrlfc_us = rx_us;
+    ecu->other_hrlfc_seen = true;
+}
+
+static void on_preview(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
+{
+    const int r = pfe_preview_push(&ecu->preview_buf, f);
+    if (r < 0) {
+        count_up(&ecu->count.rx_rejected, 1U);
+    } else if ((ecu->preview_buf.phase == PFE_PREVIEW_RECEIVING) &&
+               (ecu->preview_buf.next_index == 0U)) {
+        /* A header: the preview's sample 0 is under the vehicle now, and
+         * the prediction in progress was over the old one. */
+        ecu->preview_travelled_um = 0U;
+        pfe_predict_cancel(&ecu->predict);
+    } else if (r == PFE_PREVIEW_COMPLETE) {
+        ecu->preview_new = true;
+        ecu->preview_serial++;
+    } else {
+        /* a data frame of a preview in progress */
+    }
+    input_update(&ecu->preview, (ecu->preview_buf.phase == PFE_PREVIEW_READY)
+                                    ? PFE_SIG_VALID : PFE_SIG_NOT_AVAILABLE, rx_us);
 }
 
 static void on_frame(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
@@ -299,50 +524,35 @@ static void on_frame(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
         count_up(&ecu->count.rx_rejected, 1U);
         return;
     }
-    /* PGN with priority and source masked (J1939-21). */
+    /* PGN with priority masked (and a PDU1 destination), then the sender. */
     const uint32_t pgn = pfe_j1939_pgn(f->id);
+    const uint8_t sa = pfe_j1939_source(f->id);
+    if (pgn == PFE_PGN_ADDRESS_CLAIMED) {
+        on_address_claimed(ecu, f);
+        return;
+    }
+    if ((sa == ecu->address) && (ecu->addr_state != PFE_ECU_ADDR_LOST)) {
+        on_conflict(ecu);
+        return;
+    }
     if (pgn == PFE_PGN_CCVS1) {
-        pfe_msg_ccvs1_t m;
-        if (pfe_codec_decode_ccvs1(f, &m) < 0) {
-            count_up(&ecu->count.rx_rejected, 1U);
-            return;
-        }
-        input_update(&ecu->speed, m.speed_mm_s.state, rx_us);
-        ecu->speed_mm_s = m.speed_mm_s.value;
+        on_ccvs1(ecu, f, sa, rx_us);
     } else if (pgn == PFE_PGN_SSI) {
-        pfe_msg_ssi_t m;
-        if (pfe_codec_decode_ssi(f, &m) < 0) {
-            count_up(&ecu->count.rx_rejected, 1U);
-            return;
-        }
-        bool saturated = false;
-        ecu->grade_ppm = pfe_codec_grade_ppm_from_pitch(m.pitch_udeg.value, &saturated);
-        ecu->grade_saturated = saturated;
-        input_update(&ecu->grade, m.pitch_udeg.state, rx_us);
+        on_ssi(ecu, f, sa, rx_us);
     } else if (pgn == PFE_PGN_PLATOON_CONFIG) {
         on_platoon_config(ecu, f, rx_us);
     } else if (pgn == PFE_PGN_GRADE_PREVIEW) {
-        const int r = pfe_preview_push(&ecu->preview_buf, f);
-        if (r < 0) {
-            count_up(&ecu->count.rx_rejected, 1U);
-        } else if ((ecu->preview_buf.phase == PFE_PREVIEW_RECEIVING) &&
-                   (ecu->preview_buf.next_index == 0U)) {
-            /* A header: the preview's sample 0 is under the vehicle now, and
-             * the prediction in progress was over the old one. */
-            ecu->preview_travelled_um = 0U;
-            pfe_predict_cancel(&ecu->predict);
-        } else if (r == PFE_PREVIEW_COMPLETE) {
-            ecu->preview_new = true;
-            ecu->preview_serial++;
-        } else {
-            /* a data frame of a preview in progress */
-        }
-        input_update(&ecu->preview, (ecu->preview_buf.phase == PFE_PREVIEW_READY)
-                                        ? PFE_SIG_VALID : PFE_SIG_NOT_AVAILABLE, rx_us);
+        on_preview(ecu, f, rx_us);
     } else if (pgn == PFE_PGN_REQUEST) {
         on_request(ecu, f);
-    } else if (pgn == PFE_PGN_ADDRESS_CLAIMED) {
-        on_address_claimed(ecu, f);
+    } else if (pgn == PFE_PGN_VDS) {
+        on_vds(ecu, f, sa, rx_us);
+    } else if (pgn == PFE_PGN_CVW) {
+        on_cvw(ecu, f, sa, rx_us);
+    } else if (pgn == PFE_PGN_LFE1) {
+        on_lfe1(ecu, f, sa, rx_us);
+    } else if (pgn == PFE_PGN_HRLFC) {
+        on_hrlfc(ecu, f, rx_us);
     } else {
         count_up(&ecu->count.rx_rejected, 1U);
     }
@@ -382,7 +592,7 @@ static uint32_t sat_u32(uint64_t v)
 /* Step 5 of the tick: the prediction's share of work. */
 static void predict(pfe_ecu_t *ecu, uint64_t now_us, bool work)
 {
-    const bool speed_ok = ecu->speed.state == PFE_SIG_VALID;
+    const bool speed_ok = ecu->in[PFE_IN_SPEED].state == PFE_SIG_VALID;
     if (speed_ok && (ecu->speed_mm_s > 0)) {
         /* mm/s over 10 ms = 10 um per mm/s */
         ecu->preview_travelled_um += (uint64_t)ecu->speed_mm_s * (PFE_ECU_TICK_US / 1000U);
@@ -414,14 +624,109 @@ static void predict(pfe_ecu_t *ecu, uint64_t now_us, bool work)
     }
 }
 
-static void encode_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f)
+static pfe_sig_u32_t sig_bit(bool on)
+{
+    return sig_u32(on ? 1U : 0U, true);
+}
+
+static void encode_status(const pfe_ecu_t *ecu, pfe_can_frame_t *f)
+{
+    const pfe_est_output_t *o = ecu->out;
+    const uint32_t flags = (o != NULL) ? o->flags : 0U;
+    const bool estimate = (flags & PFE_EST_VALID) != 0U;
+    pfe_msg_status_t m;
+    m.speed_input = ecu->in[PFE_IN_SPEED].state;
+    m.grade_input = ecu->in[PFE_IN_GRADE].state;
+    m.platoon_config_input = ecu->config.state;
+    m.grade_preview_input = ecu->preview.state;
+    const bool measured_grade = ecu->grade_source != (uint8_t)PFE_GRADE_SOURCE_ASSUMED_FLAT;
+    m.mode = sig_u32(!estimate ? PFE_MODE_NO_ESTIMATE
+                               : ((ecu->degraded || (ecu->preview.state != PFE_SIG_VALID) ||
+                                   !measured_grade)
+                                      ? PFE_MODE_DEGRADED : PFE_MODE_NORMAL), true);
+    m.rx_frames_dropped = sig_u32(clamp_counter(ecu->count.rx_dropped), true);
+    m.tick_overruns = sig_u32(clamp_counter(ecu->count.overruns), true);
+    m.tx_frames_dropped = sig_u32(clamp_counter(ecu->count.tx_dropped), true);
+    m.warming_up = sig_bit((flags & PFE_EST_WARMING_UP) != 0U);
+    m.speed_clamped = sig_bit((flags & PFE_EST_SPEED_CLAMPED) != 0U);
+    /* The pitch's grade saturates before the estimator sees it. */
+    m.grade_clamped = sig_bit(((flags & PFE_EST_GRADE_CLAMPED) != 0U) ||
+                              (ecu->grade_saturated &&
+                               (ecu->grade_source == (uint8_t)PFE_GRADE_SOURCE_SLOPE_SENSOR)));
+    m.output_saturated = sig_bit(((flags & PFE_EST_SATURATED) != 0U) || (ecu->outputs_clamped != 0U));
+    uint32_t rejected = 0U;
+    for (uint32_t k = 0U; k < (uint32_t)PFE_IN_COUNT; k++) {
+        rejected = (ecu->in[k].rejected > (UINT32_MAX - rejected)) ? UINT32_MAX
+                                                                    : (rejected + ecu->in[k].rejected);
+    }
+    m.inputs_rejected = sig_u32(clamp_counter(rejected), true);
+    m.address_conflicts = sig_u32(clamp_counter(ecu->conflicts), true);
+    (void)pfe_codec_encode_status(f, &m, ecu->address);
+}
+
+static pfe_sig_u32_t source_of(const pfe_input_t *in)
+{
+    const uint8_t sa = pfe_input_source(in);
+    return sig_u32(sa, sa <= 253U);
+}
+
+static void encode_input_status(const pfe_ecu_t *ecu, pfe_can_frame_t *f)
+{
+    const pfe_input_t *grade_in = (ecu->grade_source == (uint8_t)PFE_GRADE_SOURCE_ALTITUDE)
+                                      ? &ecu->in[PFE_IN_ALTITUDE] : &ecu->in[PFE_IN_GRADE];
+    const bool grade_from_bus = ecu->grade_source <= (uint8_t)PFE_GRADE_SOURCE_ALTITUDE;
+    pfe_msg_input_status_t m;
+    m.speed_source = source_of(&ecu->in[PFE_IN_SPEED]);
+    m.grade_source_address = grade_from_bus ? source_of(grade_in) : sig_u32(0U, false);
+    m.fuel_rate_source = source_of(&ecu->in[PFE_IN_ENGINE_FUEL]);
+    m.speed_senders = sig_u32(ecu->in[PFE_IN_SPEED].n_senders, true);
+    m.grade_senders = sig_u32(ecu->in[PFE_IN_GRADE].n_senders, true);
+    m.grade_source = sig_u32(ecu->grade_source, true);
+    m.mass_source = sig_u32(ecu->mass_source, true);
+    m.identification = sig_u32(0U, true);
+    m.vehicle_mass_kg = sig_u32(ecu->own_calib.mass_kg, true);
+    (void)pfe_codec_encode_input_status(f, &m, ecu->address);
+}
+
+static pfe_sig_u32_t bus_sig(const pfe_ecu_t *ecu, uint32_t v)
+{
+    return sig_u32(clamp_counter(v), ecu->bus_known);
+}
+
+static void encode_device_status(const pfe_ecu_t *ecu, pfe_can_frame_t *f)
+{
+    const pfe_ecu_bus_state_t *b = &ecu->bus;
+    pfe_msg_device_status_t m;
+    m.rx_fifo_overruns = bus_sig(ecu, b->rx_overruns);
+    m.bus_off_events = bus_sig(ecu, b->bus_off_events);
+    m.error_warning = bus_sig(ecu, b->error_warning ? 1U : 0U);
+    m.error_passive = bus_sig(ecu, b->error_passive ? 1U : 0U);
+    m.bus_off = bus_sig(ecu, b->bus_off ? 1U : 0U);
+    m.nvm_write_failing = sig_bit(ecu->nvm_failing);
+    m.reset_cause = sig_u32((uint32_t)ecu->reset_cause, ecu->reset_cause_known);
+    m.tx_error_counter = bus_sig(ecu, b->tx_error_counter);
+    m.rx_error_counter = bus_sig(ecu, b->rx_error_counter);
+    m.nvm_write_failures = sig_u32(clamp_counter(ecu->count.nvm_write_failures), true);
+    (void)pfe_codec_encode_device_status(f, &m, ecu->address);
+}
+
+/* The own truck's rate, or not available. */
+static pfe_sig_u32_t own_rate(const pfe_ecu_t *ecu)
+{
+    const pfe_est_output_t *o = ecu->out;
+    const bool ok = (o != NULL) && ((o->flags & PFE_EST_VALID) != 0U);
+    return sig_u32(ok ? o->pos_fuel_rate_nl_s[ecu->own_position] : 0U, ok);
+}
+
+/* Returns the mask of signals the codec clamped. */
+static int encode_fuel_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f)
 {
     const pfe_est_output_t *o = ecu->out;
     const bool ok = (o != NULL) && ((o->flags & PFE_EST_VALID) != 0U);
     const uint8_t sa = ecu->address;
     int r = 0;
     if (which == OUT_LFE1) {
-        const pfe_msg_lfe1_t m = {sig_u32(ok ? o->pos_fuel_rate_nl_s[ecu->own_position] : 0U, ok)};
+        const pfe_msg_lfe1_t m = {own_rate(ecu)};
         r = pfe_codec_encode_lfe1(f, &m, sa);
     } else if (which == OUT_PLATOON_FUEL) {
         const pfe_msg_platoon_fuel_t m = {sig_u32(ok ? o->fuel_rate_nl_s : 0U, ok),
@@ -430,7 +735,13 @@ static void encode_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f)
     } else if (which == OUT_HRLFC) {
         const pfe_msg_hrlfc_t m = {{0U, PFE_SIG_NOT_AVAILABLE}, sig_u64(pfe_ecu_own_fuel_ul(ecu))};
         r = pfe_codec_encode_hrlfc(f, &m, sa);
-    } else if (which == OUT_PREDICTION) {
+    } else if (which == OUT_OWN_FUEL) {
+        pfe_msg_own_fuel_t m;
+        m.fuel_rate_nl_s = own_rate(ecu);
+        m.fuel_used_ul = sig_u64(pfe_ecu_own_fuel_ul(ecu));
+        m.model_identified = sig_u32(0U, true);
+        r = pfe_codec_encode_own_fuel(f, &m, sa);
+    } else {
         const pfe_predict_result_t *p = pfe_predict_result(&ecu->predict);
         const bool fresh = p->valid && (ecu->preview.state == PFE_SIG_VALID) &&
                            ((ecu->now_us - ecu->predict_result_us) <= PFE_ECU_PREDICT_MAX_AGE_US);
@@ -441,40 +752,48 @@ static void encode_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f)
             sig_u32(fresh ? p->time_ms : 0U, fresh),
         };
         r = pfe_codec_encode_fuel_prediction(f, &m, sa);
-    } else {
-        const uint32_t flags = (o != NULL) ? o->flags : 0U;
-        const bool estimate = ok;
-        pfe_msg_status_t m;
-        m.speed_input = ecu->speed.state;
-        m.grade_input = ecu->grade.state;
-        m.platoon_config_input = ecu->config.state;
-        m.grade_preview_input = ecu->preview.state;
-        m.mode = sig_u32(!estimate ? PFE_MODE_NO_ESTIMATE
-                                   : ((ecu->degraded || (ecu->preview.state != PFE_SIG_VALID))
-                                          ? PFE_MODE_DEGRADED : PFE_MODE_NORMAL), true);
-        m.rx_frames_dropped = sig_u32(clamp_counter(ecu->count.rx_dropped), true);
-        m.tick_overruns = sig_u32(clamp_counter(ecu->count.overruns), true);
-        m.tx_frames_dropped = sig_u32(clamp_counter(ecu->count.tx_dropped), true);
-        m.warming_up = sig_u32(((flags & PFE_EST_WARMING_UP) != 0U) ? 1U : 0U, true);
-        m.speed_clamped = sig_u32(((flags & PFE_EST_SPEED_CLAMPED) != 0U) ? 1U : 0U, true);
-        /* The pitch's grade saturates before the estimator sees it. */
-        const bool grade_clamped = ((flags & PFE_EST_GRADE_CLAMPED) != 0U) ||
-                                   (ecu->grade_saturated && (ecu->grade.state == PFE_SIG_VALID));
-        m.grade_clamped = sig_u32(grade_clamped ? 1U : 0U, true);
-        const bool saturated = ((flags & PFE_EST_SATURATED) != 0U) || (ecu->outputs_clamped != 0U);
-        m.output_saturated = sig_u32(saturated ? 1U : 0U, true);
-        r = pfe_codec_encode_status(f, &m, sa);
+    }
+    return r;
+}
+
+static void encode_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f)
+{
+    if (which == OUT_STATUS) {
+        encode_status(ecu, f); /* its counters are clamped before encoding */
+        return;
+    }
+    if (which == OUT_INPUT_STATUS) {
+        encode_input_status(ecu, f);
+        return;
+    }
+    if (which == OUT_DEVICE_STATUS) {
+        encode_device_status(ecu, f);
+        return;
     }
     /* An encoder returns the signals it clamped: the status says so until
-     * that output's next frame goes out unclamped. The status's own
-     * counters are clamped before encoding. */
-    if (which != OUT_STATUS) {
-        if (r > 0) {
-            ecu->outputs_clamped |= 1U << which;
-        } else {
-            ecu->outputs_clamped &= ~(1U << which);
-        }
+     * that output's next frame goes out unclamped. */
+    if (encode_fuel_output(ecu, which, f) > 0) {
+        ecu->outputs_clamped |= 1U << which;
+    } else {
+        ecu->outputs_clamped &= ~(1U << which);
     }
+}
+
+/* LFE1 and HRLFC are the engine's PGNs: sent (AUTO) only after listening
+ * three periods with no other sender, and not while another node sent it in
+ * the last three periods (can_dbc/pfe.dbc). */
+static bool j1939_fuel_due(const pfe_ecu_t *ecu, bool seen, uint64_t last_us, uint32_t period_us)
+{
+    if (ecu->cfg.j1939_fuel == PFE_ECU_J1939_FUEL_ALWAYS) {
+        return true;
+    }
+    if (ecu->cfg.j1939_fuel == PFE_ECU_J1939_FUEL_NEVER) {
+        return false;
+    }
+    const uint64_t window_us = (uint64_t)PFE_INPUT_STALE_PERIODS * period_us;
+    const bool listened = (ecu->now_us - ecu->start_us) >= window_us;
+    const bool other = seen && ((ecu->now_us - last_us) <= window_us);
+    return listened && !other;
 }
 
 static uint32_t emit(pfe_ecu_t *ecu, pfe_can_frame_t *tx, uint32_t n, uint32_t cap,
@@ -497,11 +816,51 @@ static void encode_claim(const pfe_ecu_t *ecu, pfe_can_frame_t *f, uint8_t sourc
     (void)pfe_codec_encode_address_claimed(f, &name, source);
 }
 
+/* The grade the estimator gets: SSI pitch, else the altitude's grade, else
+ * flat (unless the calibration forbids it). Sets ecu->grade_source. */
+static bool grade_in_use(pfe_ecu_t *ecu, int32_t *grade_ppm)
+{
+    const pfe_input_t *ssi = &ecu->in[PFE_IN_GRADE];
+    if (ssi->state == PFE_SIG_VALID) {
+        ecu->grade_source = (uint8_t)PFE_GRADE_SOURCE_SLOPE_SENSOR;
+        *grade_ppm = ssi->value;
+        return true;
+    }
+    if ((ecu->in[PFE_IN_ALTITUDE].state == PFE_SIG_VALID) &&
+        pfe_altgrade_grade(&ecu->altgrade, grade_ppm)) {
+        ecu->grade_source = (uint8_t)PFE_GRADE_SOURCE_ALTITUDE;
+        return true;
+    }
+    *grade_ppm = 0;
+    /* A slope sensor in error is a fault, not an absent sensor: no estimate. */
+    if (!ecu->cfg.flat_grade_forbidden && (ssi->state != PFE_SIG_ERROR) &&
+        (ssi->state != PFE_SIG_OUT_OF_RANGE)) {
+        ecu->grade_source = (uint8_t)PFE_GRADE_SOURCE_ASSUMED_FLAT;
+        return true;
+    }
+    ecu->grade_source = (uint8_t)PFE_GRADE_SOURCE_NONE;
+    return false;
+}
+
+static void age_inputs(pfe_ecu_t *ecu, uint64_t now_us)
+{
+    for (uint32_t k = 0U; k < (uint32_t)PFE_IN_COUNT; k++) {
+        const bool was = ecu->in[k].state == PFE_SIG_VALID;
+        if (!pfe_input_age(&ecu->in[k], now_us) && was && (k == (uint32_t)PFE_IN_ALTITUDE)) {
+            pfe_altgrade_reset(&ecu->altgrade);
+        }
+    }
+    age(&ecu->config, now_us, CONFIG_PERIOD_US);
+    if ((ecu->config.state != PFE_SIG_VALID) && !ecu->degraded) {
+        /* Keep the last platoon; say that it is no longer confirmed. */
+        ecu->degraded = true;
+    }
+}
+
 uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint32_t tx_cap)
 {
     ecu->now_us = now_us;
-    ecu->speed.fresh = false;
-    ecu->grade.fresh = false;
+    ecu->speed_fresh = false;
     /* Bounded work: PFE_ECU_RX_PER_TICK frames (PFE_ECU_RX_LIGHT while a
      * platoon is being built), then either a share of the rebuild or of the
      * prediction, only in a tick that decoded at most PFE_ECU_RX_LIGHT.
@@ -516,21 +875,24 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
         drained++;
     }
     apply_platoon_config(ecu);
+    apply_own_mass(ecu);
     const bool light = drained <= PFE_ECU_RX_LIGHT;
     const bool rebuilt = light && rebuild_step(ecu);
-    age(&ecu->speed, now_us, SPEED_PERIOD_US);
-    age(&ecu->grade, now_us, GRADE_PERIOD_US);
-    age(&ecu->config, now_us, CONFIG_PERIOD_US);
-    if ((ecu->config.state != PFE_SIG_VALID) && !ecu->degraded) {
-        /* Keep the last platoon; say that it is no longer confirmed. */
-        ecu->degraded = true;
+    age_inputs(ecu, now_us);
+    const bool speed_ok = ecu->in[PFE_IN_SPEED].state == PFE_SIG_VALID;
+    if (speed_ok && (ecu->speed_mm_s > 0)) {
+        /* mm/s over 10 ms = 10 um per mm/s */
+        ecu->odometer_um += (uint64_t)ecu->speed_mm_s * (PFE_ECU_TICK_US / 1000U);
     }
+    int32_t grade_ppm = 0;
+    const bool grade_ok = grade_in_use(ecu, &grade_ppm);
+    ecu->grade_ppm = grade_ppm;
 
     const pfe_est_input_t in = {
-        ecu->speed_mm_s, ecu->speed.state == PFE_SIG_VALID, ecu->speed.fresh,
-        ecu->grade_ppm, ecu->grade.state == PFE_SIG_VALID,
+        ecu->speed_mm_s, speed_ok, ecu->speed_fresh, grade_ppm, grade_ok,
     };
-    ecu->out = pfe_estimator_step(&ecu->est, &in);
+    /* While a platoon is being built the estimator pauses: not available. */
+    ecu->out = ecu->platoon_building ? NULL : pfe_estimator_step(&ecu->est, &in);
     predict(ecu, now_us, light && !rebuilt);
 
     uint32_t n = 0U;
@@ -559,6 +921,15 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
         due |= (t1s == 2U) ? (1U << (uint32_t)OUT_HRLFC) : 0U;
         due |= (t1s == 3U) ? (1U << (uint32_t)OUT_PREDICTION) : 0U;
         due |= (t1s == 4U) ? (1U << (uint32_t)OUT_STATUS) : 0U;
+        due |= (t100 == 2U) ? (1U << (uint32_t)OUT_OWN_FUEL) : 0U;
+        due |= (t1s == 5U) ? (1U << (uint32_t)OUT_INPUT_STATUS) : 0U;
+        due |= (t1s == 6U) ? (1U << (uint32_t)OUT_DEVICE_STATUS) : 0U;
+        if (!j1939_fuel_due(ecu, ecu->other_lfe1_seen, ecu->other_lfe1_us, 100000U)) {
+            due &= ~(1U << (uint32_t)OUT_LFE1);
+        }
+        if (!j1939_fuel_due(ecu, ecu->other_hrlfc_seen, ecu->other_hrlfc_us, 1000000U)) {
+            due &= ~(1U << (uint32_t)OUT_HRLFC);
+        }
         for (uint32_t k = 0U; k < OUT_COUNT; k++) {
             if ((due & (1U << k)) != 0U) {
                 encode_output(ecu, k, &f);
@@ -584,6 +955,22 @@ void pfe_ecu_note_tx_dropped(pfe_ecu_t *ecu, uint32_t frames)
 void pfe_ecu_note_rx_dropped(pfe_ecu_t *ecu, uint32_t frames)
 {
     count_up(&ecu->count.rx_dropped, frames);
+}
+
+void pfe_ecu_note_bus_state(pfe_ecu_t *ecu, const pfe_ecu_bus_state_t *bus)
+{
+    if (bus != NULL) {
+        ecu->bus = *bus;
+        ecu->bus_known = true;
+    }
+}
+
+void pfe_ecu_note_reset_cause(pfe_ecu_t *ecu, pfe_reset_cause_t cause)
+{
+    const bool known = (cause == PFE_RESET_POWER_ON) || (cause == PFE_RESET_WATCHDOG) ||
+                       (cause == PFE_RESET_SOFTWARE);
+    ecu->reset_cause = known ? cause : PFE_RESET_OTHER;
+    ecu->reset_cause_known = true;
 }
 
 bool pfe_ecu_nvm_due(const pfe_ecu_t *ecu)
@@ -625,10 +1012,16 @@ void pfe_ecu_nvm_written(pfe_ecu_t *ecu, int result)
 
 uint64_t pfe_ecu_own_fuel_ul(const pfe_ecu_t *ecu)
 {
+    if (ecu->platoon_building) {
+        return ecu->build_own_ul;
+    }
     return pfe_estimator_fuel_used_ul(&ecu->est, (int32_t)ecu->own_position);
 }
 
 uint64_t pfe_ecu_platoon_fuel_ul(const pfe_ecu_t *ecu)
 {
+    if (ecu->platoon_building) {
+        return ecu->build_platoon_ul;
+    }
     return pfe_estimator_fuel_used_ul(&ecu->est, PFE_EST_PLATOON);
 }

@@ -8,10 +8,13 @@
  *      decodes and validates each input (range, not available, error);
  *      at most PFE_ECU_RX_PER_TICK frames a tick, PFE_ECU_RX_LIGHT while a
  *      platoon is being built (the rest waits for the next tick); of
- *      several PFE_PlatoonConfig in one tick the last wins, decoded once;
- *      a new platoon is built over the next ticks, PFE_ECU_REBUILD_PER_TICK
- *      trucks a tick, then the aggregates and the switch in a tick of their
- *      own (32 trucks: 5 ticks), while the old one keeps running;
+ *      several PFE_PlatoonConfig in one tick the last wins, decoded once,
+ *      and so does the last new mass of the own truck (CVW);
+ *      a new platoon is built in place over the next ticks,
+ *      PFE_ECU_REBUILD_PER_TICK trucks a tick, then its aggregates in a
+ *      tick of their own (32 trucks: 5 ticks), the estimator paused
+ *      meanwhile (it starts again on a new platoon anyway: outputs not
+ *      available, totals held);
  *   2. ages the inputs: a message older than three of its periods makes its
  *      inputs not available (PFE_ECU_STALE_PERIODS);
  *   3. steps the estimator (pfe_estimator.h);
@@ -50,10 +53,12 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "pfe_altgrade.h"
 #include "pfe_calib.h"
 #include "pfe_can.h"
 #include "pfe_codec.h"
 #include "pfe_estimator.h"
+#include "pfe_input.h"
 #include "pfe_nvm.h"
 #include "pfe_platoon.h"
 #include "pfe_predict.h"
@@ -73,6 +78,15 @@
 #define PFE_ECU_PREDICT_MAX_AGE_US 3000000U /* an older prediction is sent as not available */
 #define PFE_ECU_DEFAULT_SET_SPEED_MM_S 25000 /* 90 km/h, until PFE_PlatoonConfig gives one */
 #define PFE_ECU_NVM_FAILING_AFTER 3U   /* failed NVM writes in a row that set nvm_failing */
+#define PFE_ECU_RECLAIM_MIN_US 1000000U /* an address conflict re-claims at most once a second */
+
+/* Whether the module sends LFE1 and HRLFC, the PGNs the engine itself sends
+ * (its own-truck estimate always goes out as PFE_OwnFuel). */
+typedef enum {
+    PFE_ECU_J1939_FUEL_AUTO = 0,       /* each only while no other node sends it (can_dbc/pfe.dbc) */
+    PFE_ECU_J1939_FUEL_ALWAYS = 1,     /* a truck without fuel reporting of its own */
+    PFE_ECU_J1939_FUEL_NEVER = 2
+} pfe_ecu_j1939_fuel_t;
 
 /* What the module is and how it starts. */
 typedef struct {
@@ -91,6 +105,16 @@ typedef struct {
      * one (0: PFE_ECU_DEFAULT_SET_SPEED_MM_S). */
     const pfe_cruise_calib_t *cruise;
     int32_t default_set_speed_mm_s;
+    /* The truck the module runs on (NULL: vehicle) and, by platoon position
+     * (0 = lead), the others (NULL entries: vehicle). CVW's mass replaces
+     * the own truck's mass while it is valid (pfe_ecu_own_calib()). */
+    const pfe_vehicle_calib_t *own_vehicle;
+    const pfe_vehicle_calib_t *vehicle_at[PFE_MAX_VEHICLES];
+    /* A real bus (docs/j1939.md); zero is the default of each. */
+    bool input_source_fixed[PFE_IN_COUNT]; /* the calibration names the sender of an input */
+    uint8_t input_source[PFE_IN_COUNT];    /* that sender's source address */
+    bool flat_grade_forbidden;         /* no grade source: no estimate (else the road is assumed flat) */
+    pfe_ecu_j1939_fuel_t j1939_fuel;
 } pfe_ecu_config_t;
 
 /* Input states in PFE_Status (can_dbc/pfe.dbc VAL_). */
@@ -109,6 +133,25 @@ typedef struct {
     uint64_t rx_us;                    /* receive time of the last frame */
     bool seen;
 } pfe_ecu_input_t;
+
+/* The CAN controller as a HAL backend sees it (pfe_ecu_note_bus_state()). */
+typedef struct {
+    uint32_t rx_overruns;              /* frames the controller's receive FIFOs lost, saturating */
+    uint32_t bus_off_events;           /* times the controller went bus-off, saturating */
+    uint8_t tx_error_counter;          /* TEC, 0 .. 255 */
+    uint8_t rx_error_counter;          /* REC, 0 .. 255 */
+    bool error_warning;
+    bool error_passive;
+    bool bus_off;
+} pfe_ecu_bus_state_t;
+
+/* Cause of the last reset, as the HAL reads it at start (PFE_DeviceStatus ResetCause). */
+typedef enum {
+    PFE_RESET_POWER_ON = 0,
+    PFE_RESET_WATCHDOG = 1,
+    PFE_RESET_SOFTWARE = 2,
+    PFE_RESET_OTHER = 3
+} pfe_reset_cause_t;
 
 /* Counters that only count up (saturating). */
 typedef struct {
@@ -137,13 +180,29 @@ typedef struct {
     bool claim_pending;                /* send our Address Claimed on the next tick */
     uint32_t request_pending;          /* bit per output message asked for by a request */
     bool cannot_claim_pending;         /* answer with "cannot claim" (source 254) */
-    /* inputs */
-    pfe_ecu_input_t speed;
-    pfe_ecu_input_t grade;
+    /* inputs: arbitrated and checked (pfe_input.h) */
+    pfe_input_t in[PFE_IN_COUNT];
+    bool speed_fresh;                  /* a new accepted speed since the last tick */
+    uint32_t conflicts;                /* frames from another node with our address, and claims of it */
+    uint64_t reclaim_us;               /* last re-claim after a conflict */
+    bool reclaimed;
+    /* grade source chain: SSI pitch, else VDS altitude over distance, else flat */
+    pfe_altgrade_t altgrade;
+    uint64_t odometer_um;              /* distance travelled, from the speed in use */
+    uint8_t grade_source;              /* PFE_GRADE_SOURCE_* of the last tick */
+    /* the own truck's model */
+    pfe_vehicle_calib_t own_calib;     /* in use: calibration, mass from CVW */
+    uint8_t mass_source;               /* PFE_MASS_SOURCE_* */
+    /* other nodes' LFE1 and HRLFC: the module does not shadow them */
+    uint64_t other_lfe1_us;
+    uint64_t other_hrlfc_us;
+    bool other_lfe1_seen;
+    bool other_hrlfc_seen;
+    uint64_t start_us;
     pfe_ecu_input_t config;
     pfe_ecu_input_t preview;
-    int32_t speed_mm_s;
-    int32_t grade_ppm;
+    int32_t speed_mm_s;                /* speed in use (valid when in[PFE_IN_SPEED] is) */
+    int32_t grade_ppm;                 /* grade in use (valid when grade_source < NONE) */
     bool grade_saturated;              /* the last pitch was beyond +-PFE_GRADE_MAX_PPM */
     pfe_msg_platoon_config_t platoon_msg;
     /* the tick's last PFE_PlatoonConfig, decoded and applied once after the queue */
@@ -153,12 +212,21 @@ typedef struct {
     pfe_preview_t preview_buf;
     /* model */
     pfe_platoon_t platoon;
-    /* the next platoon, built over ticks (PFE_ECU_REBUILD_PER_TICK trucks a tick) */
-    pfe_platoon_t platoon_next;
-    pfe_platoon_config_t platoon_next_cfg;
-    uint32_t platoon_next_built;       /* positions built so far */
-    uint32_t platoon_next_position;
+    /* a platoon being built in place over ticks (PFE_ECU_REBUILD_PER_TICK trucks a tick) */
     bool platoon_building;
+    uint32_t build_n;
+    uint32_t build_position;
+    uint32_t build_gap_mm;
+    uint32_t build_done;               /* positions built; build_n: the aggregates next */
+    uint64_t build_own_ul;             /* totals at the build's start, held during it */
+    uint64_t build_platoon_ul;
+    uint32_t build_old_n;              /* the platoon before, for a build that fails */
+    uint32_t build_old_position;
+    uint32_t build_old_gap_mm;
+    /* the tick's last new mass of the own truck (CVW), applied once after the queue */
+    uint32_t mass_next_kg;
+    uint8_t mass_next_source;
+    bool mass_next_pending;
     pfe_estimator_t est;
     /* prediction over the preview */
     pfe_predict_t predict;
@@ -178,8 +246,14 @@ typedef struct {
     uint32_t nvm_sequence;             /* of the last completed NVM write */
     int nvm_last_slot;                 /* slot of the last completed write, -1 for none */
     uint32_t nvm_fail_streak;          /* failed writes since the last completed one */
-    bool nvm_failing;                  /* PFE_ECU_NVM_FAILING_AFTER failures in a row, until a write completes */
+    bool nvm_failing;                  /* PFE_ECU_NVM_FAILING_AFTER failures in a row, until a write
+                                        * completes (PFE_DeviceStatus NvmWriteFailing) */
     uint32_t outputs_clamped;          /* bit per output whose last frame the codec clamped */
+    /* device health from the HAL (PFE_DeviceStatus); not available until reported */
+    pfe_ecu_bus_state_t bus;
+    bool bus_known;
+    pfe_reset_cause_t reset_cause;
+    bool reset_cause_known;
     pfe_ecu_counters_t count;
 } pfe_ecu_t;
 
@@ -188,7 +262,7 @@ typedef struct {
  * J1939 PGN with priority and source masked, and for the PDU1 PGNs
  * (request, address claimed) the destination too. A HAL that installs them
  * keeps other traffic from costing the ECU anything. */
-#define PFE_ECU_RX_FILTERS 6U
+#define PFE_ECU_RX_FILTERS 10U
 typedef struct {
     uint32_t id;
     uint32_t mask;
@@ -216,6 +290,12 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
 void pfe_ecu_note_overrun(pfe_ecu_t *ecu, uint32_t ticks);
 void pfe_ecu_note_tx_dropped(pfe_ecu_t *ecu, uint32_t frames);
 void pfe_ecu_note_rx_dropped(pfe_ecu_t *ecu, uint32_t frames);
+/* The CAN controller's state, from a backend that has one (sent in
+ * PFE_DeviceStatus; its signals are not available until the first call). */
+void pfe_ecu_note_bus_state(pfe_ecu_t *ecu, const pfe_ecu_bus_state_t *bus);
+/* Cause of the last reset, once after pfe_ecu_init() (a cause outside the
+ * enumeration is taken as PFE_RESET_OTHER). */
+void pfe_ecu_note_reset_cause(pfe_ecu_t *ecu, pfe_reset_cause_t cause);
 
 /*
  * NVM save path, in this order on one tick:

@@ -23,7 +23,7 @@
  *     onset + one tick for a bad value;
  *   - the module's last LFE1 before the onset was valid (else the check
  *     proves nothing);
- *   - every LFE1 and PFE_PlatoonFuel fuel rate sent after deadline + slack
+ *   - every LFE1, PFE_OwnFuel and PFE_PlatoonFuel fuel rate sent after deadline + slack
  *     until the input returns is "not available", and there is at least
  *     one;
  *   - every PFE_Status sent in that time gives the input's state (not
@@ -31,6 +31,11 @@
  *     at least one;
  *   - after the input returns, an LFE1 is valid again within 1 s, and the
  *     next PFE_Status gives the input as valid.
+ * A silent SSI is the exception: the module then assumes the road flat
+ * (can_dbc/pfe.dbc, PFE_InputStatus GradeSource), so its rates stay
+ * available; the judge checks that none is "not available", that every
+ * PFE_Status in the window gives the grade input not available and mode
+ * "degraded", and every PFE_InputStatus grade source "assumed flat".
  * Slack (default 0) allows for a tick phase the capture does not show: 0
  * for a replay in logical time, a tick or two over a real bus.
  * Prints a line per fault; exit status 0 pass, 1 fail, 2 bad input.
@@ -229,6 +234,11 @@ static bool rate_na(const cap_t *c, bool *is_rate)
         *is_rate = pfe_codec_decode_lfe1(&c->f, &m) == PFE_OK;
         return m.fuel_rate_nl_s.state != PFE_SIG_VALID;
     }
+    if (is_pgn(&c->f, PFE_PGN_OWN_FUEL)) {
+        pfe_msg_own_fuel_t m;
+        *is_rate = pfe_codec_decode_own_fuel(&c->f, &m) == PFE_OK;
+        return m.fuel_rate_nl_s.state != PFE_SIG_VALID;
+    }
     if (is_pgn(&c->f, PFE_PGN_PLATOON_FUEL)) {
         pfe_msg_platoon_fuel_t m;
         *is_rate = pfe_codec_decode_platoon_fuel(&c->f, &m) == PFE_OK;
@@ -310,6 +320,10 @@ static int judge_one(const fault_t *ft, uint64_t t0, uint8_t sa, uint64_t slack_
         return 1;
     }
     const uint64_t deadline = onset + ((ft->kind == FAULT_SILENT) ? (3U * period_us) : 0U) + TICK_US;
+    /* a silent slope sensor: the road is assumed flat, the estimate goes on */
+    const bool flat = (ft->input == INPUT_GRADE) && (ft->kind == FAULT_SILENT);
+    const uint32_t want_mode = flat ? PFE_MODE_DEGRADED : PFE_MODE_NO_ESTIMATE;
+    uint32_t n_flat = 0U, n_flat_bad = 0U;
     int fail = 0;
     bool valid_before = false, seen_before = false;
     uint32_t n_na = 0U, n_not_na = 0U, n_status = 0U, n_status_bad = 0U;
@@ -347,7 +361,7 @@ static int judge_one(const fault_t *ft, uint64_t t0, uint8_t sa, uint64_t slack_
             if (in_window) {
                 n_status++;
                 if ((got != want) || (st.mode.state != PFE_SIG_VALID) ||
-                    (st.mode.value != PFE_MODE_NO_ESTIMATE)) {
+                    (st.mode.value != want_mode)) {
                     n_status_bad++;
                     printf("fault %-19s   status at +%.3f s: input %s, mode %u\n", ft->name,
                            (double)(c->t_us - t0) / 1e6, state_name(got), (unsigned)st.mode.value);
@@ -356,6 +370,15 @@ static int judge_one(const fault_t *ft, uint64_t t0, uint8_t sa, uint64_t slack_
             if (have_recovered && !status_after_seen && (c->t_us >= recovered)) {
                 status_after_seen = true;
                 status_after_ok = got == PFE_SIG_VALID;
+            }
+        }
+        if (flat && in_window && is_pgn(&c->f, PFE_PGN_INPUT_STATUS)) {
+            pfe_msg_input_status_t is;
+            n_flat++;
+            if ((pfe_codec_decode_input_status(&c->f, &is) != PFE_OK) ||
+                (is.grade_source.state != PFE_SIG_VALID) ||
+                (is.grade_source.value != PFE_GRADE_SOURCE_ASSUMED_FLAT)) {
+                n_flat_bad++;
             }
         }
         if (is_rate && is_pgn(&c->f, PFE_PGN_LFE1) && !na && (c->t_us >= back) && !have_recovered) {
@@ -377,7 +400,16 @@ static int judge_one(const fault_t *ft, uint64_t t0, uint8_t sa, uint64_t slack_
         printf("fault %-19s FAIL: the output was not valid before the fault\n", ft->name);
         fail = 1;
     }
-    if ((n_na == 0U) || (n_not_na > 0U) || !have_first_na || (first_na > (deadline + slack_us + 100000U))) {
+    if (flat) {
+        printf("fault %-19s   road assumed flat: %u of %u input-status frames say so\n", ft->name,
+               n_flat - n_flat_bad, n_flat);
+        if ((n_na > 0U) || (n_not_na == 0U) || (n_flat == 0U) || (n_flat_bad > 0U)) {
+            printf("fault %-19s FAIL: the estimate did not go on with the road assumed flat\n",
+                   ft->name);
+            fail = 1;
+        }
+    } else if ((n_na == 0U) || (n_not_na > 0U) || !have_first_na ||
+               (first_na > (deadline + slack_us + 100000U))) {
         printf("fault %-19s FAIL: fuel rates not \"not available\" from the deadline on\n", ft->name);
         fail = 1;
     }

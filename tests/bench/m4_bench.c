@@ -172,9 +172,19 @@ static uint64_t ecu_tick(uint64_t now_us, const pfe_can_frame_t *rx, uint32_t n_
 
 static int bench_ecu(void)
 {
-    const pfe_ecu_config_t cfg = {PFE_ECU_DEFAULT_ADDRESS, 0x80A0000000000001ULL, 10000U,
-                                  &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
-                                  5U, 0U, 10000U, &pfe_default_cruise, 25000};
+    const pfe_ecu_config_t cfg = {
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = 0x80A0000000000001ULL,
+        .save_interval_ms = 10000U,
+        .vehicle = &pfe_default_vehicle,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = 5U,
+        .default_position = 0U,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = 25000,
+    };
     uint64_t now = 1000000U;
     if (pfe_ecu_init(&s_ecu, &cfg, NULL, -1, now) != PFE_OK) {
         return -1;
@@ -312,9 +322,19 @@ static int bench_predict(void)
 
     /* The ECU receiving the preview (ten frames a tick with the drive's) and
      * predicting over it, 5 trucks. */
-    const pfe_ecu_config_t cfg = {PFE_ECU_DEFAULT_ADDRESS, 0x80A0000000000001ULL, 10000U,
-                                  &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
-                                  5U, 0U, 10000U, &pfe_default_cruise, 25000};
+    const pfe_ecu_config_t cfg = {
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = 0x80A0000000000001ULL,
+        .save_interval_ms = 10000U,
+        .vehicle = &pfe_default_vehicle,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = 5U,
+        .default_position = 0U,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = 25000,
+    };
     uint64_t now = 1000000U;
     if (pfe_ecu_init(&s_ecu, &cfg, NULL, -1, now) != PFE_OK) {
         return -1;
@@ -360,7 +380,10 @@ static int bench_predict(void)
 
 /* Frame `kind` of a burst: 0 CCVS1, 1 SSI, 2 a request for an output, 3 a
  * platoon configuration (2 .. 32 trucks, a new one each time), 4 a preview
- * header, 5 a preview data frame, 6 a PGN the module does not read. */
+ * header, 5 a preview data frame, 6 a PGN the module does not read, 7 VDS,
+ * 8 CVW (a new mass each time), 9 another node's LFE1, 10 its HRLFC; from
+ * two senders. */
+#define BURST_KINDS 11U
 static void burst_frame(uint32_t kind, uint32_t k, pfe_can_frame_t *f)
 {
     if (kind == 0U) {
@@ -381,6 +404,20 @@ static void burst_frame(uint32_t kind, uint32_t k, pfe_can_frame_t *f)
         (void)pfe_codec_encode_platoon_config(f, &pc, 0x00U);
     } else if ((kind == 4U) || (kind == 5U)) {
         (void)preview_frame((kind == 4U) ? 0U : (1U + (k % 8U)), f);
+    } else if (kind == 7U) {
+        const pfe_msg_vds_t v = {{90000U, PFE_SIG_VALID}, {25000, PFE_SIG_VALID},
+                                 {(int32_t)(k % 3000U), PFE_SIG_VALID}, {100000 + (int32_t)(k * 10U), PFE_SIG_VALID}};
+        (void)pfe_codec_encode_vds(f, &v, (uint8_t)(k % 2U));
+    } else if (kind == 8U) {
+        const pfe_msg_cvw_t w = {{20000U + ((k % 200U) * 100U), PFE_SIG_VALID},
+                                 {30000U + ((k % 200U) * 100U), PFE_SIG_VALID}};
+        (void)pfe_codec_encode_cvw(f, &w, (uint8_t)(k % 2U));
+    } else if (kind == 9U) {
+        const pfe_msg_lfe1_t l = {{9000000U + k, PFE_SIG_VALID}};
+        (void)pfe_codec_encode_lfe1(f, &l, (uint8_t)(k % 2U));
+    } else if (kind == 10U) {
+        const pfe_msg_hrlfc_t h = {{0U, PFE_SIG_NOT_AVAILABLE}, {1000000U + k, PFE_SIG_VALID}};
+        (void)pfe_codec_encode_hrlfc(f, &h, (uint8_t)(k % 2U));
     } else {
         /* EEC1 (PGN 61444), read by nobody here */
         f->id = PFE_CAN_EFF_FLAG | 0x0CF00400UL;
@@ -393,9 +430,19 @@ static void burst_frame(uint32_t kind, uint32_t k, pfe_can_frame_t *f)
 
 static int bench_burst(void)
 {
-    const pfe_ecu_config_t cfg = {PFE_ECU_DEFAULT_ADDRESS, 0x80A0000000000001ULL, 10000U,
-                                  &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
-                                  5U, 0U, 10000U, &pfe_default_cruise, 25000};
+    const pfe_ecu_config_t cfg = {
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = 0x80A0000000000001ULL,
+        .save_interval_ms = 10000U,
+        .vehicle = &pfe_default_vehicle,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = PFE_MAX_VEHICLES, /* the dearest rebuild */
+        .default_position = 0U,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = 25000,
+    };
     uint64_t now = 1000000U;
     if (pfe_ecu_init(&s_ecu, &cfg, NULL, -1, now) != PFE_OK) {
         return -1;
@@ -403,8 +450,8 @@ static int bench_burst(void)
     static pfe_can_frame_t burst[PFE_ECU_RX_QUEUE_LEN];
     uint64_t worst = 0U;
     uint32_t rng = 1U;
-    /* Mixes 0 .. 6: all of one kind; 7 .. 60: random kinds. */
-    for (uint32_t mix = 0U; mix < 61U; mix++) {
+    /* Mixes 0 .. BURST_KINDS - 1: all of one kind; then random kinds. */
+    for (uint32_t mix = 0U; mix < (BURST_KINDS + 60U); mix++) {
         /* Back to a module that predicts: speed and grade, a whole preview,
          * ticks until a prediction runs. */
         uint32_t sent_frames = 0U;
@@ -427,15 +474,15 @@ static int bench_burst(void)
         }
         for (uint32_t k = 0U; k < PFE_ECU_RX_QUEUE_LEN; k++) {
             uint32_t kind = mix;
-            if (mix >= 7U) {
+            if (mix >= BURST_KINDS) {
                 rng = (rng * 1103515245U) + 12345U;
-                kind = (rng >> 16) % 7U;
+                kind = (rng >> 16) % BURST_KINDS;
             }
             burst_frame(kind, k + (mix * PFE_ECU_RX_QUEUE_LEN), &burst[k]);
         }
         /* Random mixes come in three sizes: the most frames a tick that also
          * predicts decodes, one more, and a full queue. */
-        const uint32_t len = (mix < 7U) ? PFE_ECU_RX_QUEUE_LEN
+        const uint32_t len = (mix < BURST_KINDS) ? PFE_ECU_RX_QUEUE_LEN
                              : (((mix % 3U) == 0U) ? PFE_ECU_RX_LIGHT
                                 : (((mix % 3U) == 1U) ? (PFE_ECU_RX_LIGHT + 1U) : PFE_ECU_RX_QUEUE_LEN));
         for (uint32_t tick = 0U; tick < 6U; tick++, now += PFE_ECU_TICK_US) {

@@ -11,7 +11,9 @@
  *   then operations, each an op byte (bits 0-2 the kind, 3-7 a parameter p):
  *     0 RAW      id (4), dlc (mod 9), 8 data bytes: any frame at all
  *     1 PGN      an id of the module's PGNs (p), source, destination, dlc
- *                (mod 9), 8 data bytes: right PGN, any content
+ *                (mod 9), 8 data bytes: right PGN, any content (VDS, CVW,
+ *                another node's LFE1 and HRLFC, and the module's own
+ *                address as a source among them)
  *     2 SPEED    CCVS1 with the raw 16-bit speed given (2 bytes)
  *     3 PITCH    SSI with the raw 16-bit pitch given (2 bytes), states (p)
  *     4 CONFIG   PFE_PlatoonConfig: vehicles, position, gap (2, 10 mm),
@@ -32,8 +34,10 @@
  * Invariants (abort on failure): a tick sends at most its capacity and at
  * most PFE_ECU_TX_MAX frames; every frame sent is one of the module's
  * outputs, 29-bit, with its DBC length, from its address, and decodes;
- * HRLFC carries the own truck's total rounded to 0.001 L (or its limit,
- * and then every status after it says OutputSaturated);
+ * HRLFC and PFE_OwnFuel carry the own truck's total rounded to 0.001 L (or
+ * its limit, and then every status after it says OutputSaturated);
+ * PFE_InputStatus and PFE_DeviceStatus decode, and the mass in use stays in
+ * the calibration's range;
  * a prediction sent lies within its own bounds;
  * total fuel (own truck and platoon) never decreases between resets, and a
  * reset restores exactly the last record saved; every NVM record decodes
@@ -106,14 +110,31 @@ static void check_output(fz_t *z, const pfe_can_frame_t *f)
     } else if (pgn == PFE_PGN_PLATOON_FUEL) {
         pfe_msg_platoon_fuel_t d;
         FUZZ_CHECK(pfe_codec_decode_platoon_fuel(f, &d) >= 0);
-    } else if (pgn == PFE_PGN_HRLFC) {
+    } else if ((pgn == PFE_PGN_HRLFC) || (pgn == PFE_PGN_OWN_FUEL)) {
         pfe_msg_hrlfc_t d;
-        FUZZ_CHECK(pfe_codec_decode_hrlfc(f, &d) >= 0);
+        pfe_msg_own_fuel_t o;
+        if (pgn == PFE_PGN_HRLFC) {
+            FUZZ_CHECK(pfe_codec_decode_hrlfc(f, &d) >= 0);
+        } else {
+            FUZZ_CHECK(pfe_codec_decode_own_fuel(f, &o) >= 0);
+            d.total_fuel_ul = o.fuel_used_ul;
+        }
         FUZZ_CHECK(d.total_fuel_ul.state == PFE_SIG_VALID);
         const uint64_t own = pfe_ecu_own_fuel_ul(&z->ecu);
         const uint64_t rounded = ((own / 1000U) + (((own % 1000U) >= 500U) ? 1U : 0U)) * 1000U;
         FUZZ_CHECK(d.total_fuel_ul.value == ((rounded < HRLFC_MAX_UL) ? rounded : HRLFC_MAX_UL));
         z->hrlfc_clamped = z->hrlfc_clamped || (rounded > HRLFC_MAX_UL);
+    } else if (pgn == PFE_PGN_INPUT_STATUS) {
+        pfe_msg_input_status_t d;
+        FUZZ_CHECK(pfe_codec_decode_input_status(f, &d) >= 0);
+        FUZZ_CHECK(d.vehicle_mass_kg.state == PFE_SIG_VALID);
+        FUZZ_CHECK((d.vehicle_mass_kg.value >= PFE_MASS_MIN_KG) &&
+                   (d.vehicle_mass_kg.value <= PFE_MASS_MAX_KG));
+        FUZZ_CHECK((d.grade_source.state == PFE_SIG_VALID) &&
+                   (d.grade_source.value <= PFE_GRADE_SOURCE_NONE));
+    } else if (pgn == PFE_PGN_DEVICE_STATUS) {
+        pfe_msg_device_status_t d;
+        FUZZ_CHECK(pfe_codec_decode_device_status(f, &d) >= 0);
     } else if (pgn == PFE_PGN_FUEL_PREDICTION) {
         pfe_msg_fuel_prediction_t d;
         FUZZ_CHECK(pfe_codec_decode_fuel_prediction(f, &d) >= 0);
@@ -223,7 +244,8 @@ static void op_pgn(fz_t *z, fuzz_in_t *in, uint32_t p)
 {
     static const uint32_t pgns[] = {PFE_PGN_CCVS1, PFE_PGN_SSI, PFE_PGN_PLATOON_CONFIG,
                                     PFE_PGN_GRADE_PREVIEW, PFE_PGN_REQUEST, PFE_PGN_ADDRESS_CLAIMED,
-                                    PFE_PGN_LFE1, PFE_PGN_STATUS};
+                                    PFE_PGN_LFE1, PFE_PGN_STATUS, PFE_PGN_VDS, PFE_PGN_CVW,
+                                    PFE_PGN_HRLFC, PFE_PGN_OWN_FUEL};
     const uint8_t sa = fuzz_u8(in);
     const uint8_t da = fuzz_u8(in);
     pfe_can_frame_t f;

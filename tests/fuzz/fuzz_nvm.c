@@ -119,9 +119,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     /* The ECU from the record: totals back as saved (or held at the
      * estimator's limit), then 1.5 s of a truck at 90 km/h on a 2 % grade. */
-    const pfe_ecu_config_t cfg = {PFE_ECU_DEFAULT_ADDRESS, 0x80A0000012345678ULL, 1000U,
-                                  &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag,
-                                  1U, 0U, 10000U, &pfe_default_cruise, 25000};
+    const pfe_ecu_config_t cfg = {
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = 0x80A0000012345678ULL,
+        .save_interval_ms = 1000U,
+        .vehicle = &pfe_default_vehicle,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = 1U,
+        .default_position = 0U,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = 25000,
+    };
     FUZZ_CHECK(pfe_ecu_init(&g_ecu, &cfg, (pick >= 0) ? &got : NULL, pick, 1000000U) == PFE_OK);
     uint64_t own = pfe_ecu_own_fuel_ul(&g_ecu);
     uint64_t platoon = pfe_ecu_platoon_fuel_ul(&g_ecu);

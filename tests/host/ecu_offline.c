@@ -114,9 +114,17 @@ int main(int argc, char **argv)
         return 2;
     }
     const pfe_ecu_config_t cfg = {
-        PFE_ECU_DEFAULT_ADDRESS, 0x80A0000000000001ULL | ((uint64_t)PFE_ECU_DEFAULT_ADDRESS << 1),
-        10000U, &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag, 1U, 0U, 10000U,
-        &pfe_default_cruise, PFE_ECU_DEFAULT_SET_SPEED_MM_S,
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = 0x80A0000000000001ULL | ((uint64_t)PFE_ECU_DEFAULT_ADDRESS << 1),
+        .save_interval_ms = 10000U,
+        .vehicle = &pfe_default_vehicle,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = 1U,
+        .default_position = 0U,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = PFE_ECU_DEFAULT_SET_SPEED_MM_S,
     };
     static pfe_ecu_t ecu;
     const uint64_t start_us = drive.recs[0].t_us - START_BEFORE_US;

@@ -21,7 +21,9 @@
  *   - on the way (path checks, off with --boot-checks-only): a failed write
  *     is retried on the next pass to the same slot, the ECU counts the
  *     failures (count.nvm_write_failures) and says nvm_failing after
- *     PFE_ECU_NVM_FAILING_AFTER in a row, until a write completes.
+ *     PFE_ECU_NVM_FAILING_AFTER in a row, until a write completes; and
+ *     every PFE_DeviceStatus on the bus says so (NvmWriteFailing,
+ *     NvmWriteFailures), as of the pass that sent it.
  * A failing check prints the seed, the sequence and the values, and fails.
  *
  *   test_nvm_faults [--boot-checks-only] [SEQUENCES_PER_SEED [SEED...]]
@@ -40,6 +42,7 @@
 #include <cmocka.h>
 
 #include "firmware/pfe_calib.h"
+#include "firmware/pfe_can.h"
 #include "firmware/pfe_codec.h"
 #include "firmware/pfe_ecu.h"
 #include "firmware/pfe_fixed.h"
@@ -79,6 +82,8 @@ typedef struct {
     uint32_t failed_writes;
     uint32_t completed_writes;
     uint32_t failing_seen;
+    uint32_t device_status_frames;
+    uint32_t device_status_failing;    /* of them, with NvmWriteFailing set */
     uint64_t worst_loss_ul;            /* at a reset with no failed write since the last completed one */
     uint64_t worst_loss_failing_ul;    /* with failed writes since */
     uint32_t worst_rate_nl_s;
@@ -205,7 +210,9 @@ static void run_sequence(run_t *r, uint32_t seq)
         const int32_t pitch = k_pitch_udeg[below(r, 5U)];
         const bool plan_failures = below(r, 3U) == 0U;
         const uint32_t fail_at = below(r, ticks);
-        const uint32_t fail_count = 1U + below(r, 6U);
+        /* a few failures in a row, or (one run in four) flash that fails
+         * for seconds: the status on the bus must say so */
+        const uint32_t fail_count = (below(r, 4U) == 0U) ? (100U + below(r, 300U)) : (1U + below(r, 6U));
         /* A failed write leaves at most 24 bytes: byte 23 (the platoon
          * total's top byte, 0 here) then reads 0xFF, so such a slot never
          * holds its whole record by chance. */
@@ -228,6 +235,33 @@ static void run_sequence(run_t *r, uint32_t seq)
             const uint32_t writes_before = nvm.writes;
             send(node, tick, pitch);
             (void)hal_ecu_loop_step(&loop, 1000000U + (tick * PFE_ECU_TICK_US));
+            /* The pass's frames went out before its write: its status is
+             * as of the writes before. */
+            hal_can_rx_t rx;
+            while (hal_can_receive(node, &rx) == 0) {
+                pfe_msg_device_status_t ds;
+                if ((pfe_j1939_pgn(rx.frame.id) != PFE_PGN_DEVICE_STATUS) ||
+                    (pfe_codec_decode_device_status(&rx.frame, &ds) < 0)) {
+                    continue;
+                }
+                r->device_status_frames++;
+                const uint32_t want_count = (failed_this_life > PFE_STATUS_COUNTER_MAX) ? PFE_STATUS_COUNTER_MAX
+                                                                                         : failed_this_life;
+                const bool want_failing = streak >= PFE_ECU_NVM_FAILING_AFTER;
+                if (ds.nvm_write_failing.value != 0U) {
+                    r->device_status_failing++;
+                }
+                if (!r->boot_checks_only) {
+                    CHECK(r, seq, (ds.nvm_write_failing.state == PFE_SIG_VALID) &&
+                                      (ds.nvm_write_failing.value == (want_failing ? 1U : 0U)) &&
+                                      (ds.nvm_write_failures.value == want_count),
+                          "PFE_DeviceStatus says NvmWriteFailing %lu (state %d), NvmWriteFailures %lu; "
+                          "%lu failed writes in a row, %lu this life",
+                          (unsigned long)ds.nvm_write_failing.value, (int)ds.nvm_write_failing.state,
+                          (unsigned long)ds.nvm_write_failures.value, (unsigned long)streak,
+                          (unsigned long)failed_this_life);
+                }
+            }
             tick++;
             ticks_since_completed++;
             if ((ecu.out != NULL) && ((ecu.out->flags & PFE_EST_VALID) != 0U) &&
@@ -319,12 +353,14 @@ static void test_seed(void **state)
     }
     print_message("seed %lu: sequences %lu, boots %lu, resets between passes %lu, resets in a write %lu, "
                   "writes %lu (completed %lu, failed %lu), passes with nvm_failing after a write %lu, "
+                  "PFE_DeviceStatus frames %lu (%lu with NvmWriteFailing), "
                   "worst loss %llu uL (bound %llu; %llu uL with failed writes since the last completed), "
                   "largest rate %lu nL/s (bound %llu)\n",
                   (unsigned long)r.seed, (unsigned long)r.sequences, (unsigned long)r.boots,
                   (unsigned long)r.resets_between, (unsigned long)r.resets_in_write, (unsigned long)r.writes,
                   (unsigned long)r.completed_writes, (unsigned long)r.failed_writes,
-                  (unsigned long)r.failing_seen, (unsigned long long)r.worst_loss_ul,
+                  (unsigned long)r.failing_seen, (unsigned long)r.device_status_frames,
+                  (unsigned long)r.device_status_failing, (unsigned long long)r.worst_loss_ul,
                   (unsigned long long)LOSS_MAX_UL, (unsigned long long)r.worst_loss_failing_ul,
                   (unsigned long)r.worst_rate_nl_s,
                   (unsigned long long)RATE_MAX_NL_S);
@@ -334,6 +370,7 @@ static void test_seed(void **state)
     assert_in_range(r.failed_writes, g_sequences_per_seed / 4U, UINT32_MAX);
     if (!g_boot_checks_only) {
         assert_in_range(r.failing_seen, 1U, UINT32_MAX);
+        assert_in_range(r.device_status_failing, 1U, UINT32_MAX);
     }
 }
 

@@ -128,8 +128,10 @@ static void test_message_table(void **state)
     } expected[PFE_MSG_COUNT] = {
         {65265U, 8U, 100U, 0U, 1U},   {61459U, 8U, 10U, 1U, 3U},    {65280U, 8U, 1000U, 4U, 5U},
         {65281U, 8U, 0U, 9U, 8U},     {65266U, 8U, 100U, 17U, 1U},  {65282U, 8U, 100U, 18U, 2U},
-        {64777U, 8U, 1000U, 20U, 2U}, {65283U, 8U, 1000U, 22U, 4U}, {65284U, 8U, 1000U, 26U, 12U},
-        {60928U, 8U, 0U, 38U, 10U},   {59904U, 3U, 0U, 48U, 1U},
+        {64777U, 8U, 1000U, 20U, 2U}, {65283U, 8U, 1000U, 22U, 4U}, {65284U, 8U, 1000U, 26U, 14U},
+        {60928U, 8U, 0U, 40U, 10U},   {59904U, 3U, 0U, 50U, 1U},    {65256U, 8U, 100U, 51U, 4U},
+        {65136U, 8U, 0U, 55U, 2U},    {65285U, 8U, 100U, 57U, 3U},  {65286U, 8U, 1000U, 60U, 9U},
+        {65287U, 8U, 1000U, 69U, 10U},
     };
     uint32_t covered = 0U;
     for (uint32_t m = 0U; m < (uint32_t)PFE_MSG_COUNT; m++) {
@@ -147,7 +149,7 @@ static void test_message_table(void **state)
         }
     }
     assert_int_equal(covered, PFE_CODEC_SIGNAL_COUNT);
-    assert_int_equal(pfe_codec_signal_count, 49);
+    assert_int_equal(pfe_codec_signal_count, 79);
 }
 
 /* Signals of one message never share a bit unless they belong to different
@@ -236,6 +238,8 @@ static const sig_case_t sig_cases[PFE_CODEC_SIGNAL_COUNT] = {
     {PFE_CSIG_ST_SPEED_CLAMPED, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
     {PFE_CSIG_ST_GRADE_CLAMPED, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
     {PFE_CSIG_ST_OUTPUT_SATURATED, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_ST_INPUTS_REJECTED, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_ST_ADDRESS_CONFLICTS, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
     {PFE_CSIG_AC_IDENTITY_NUMBER, 0x1FFFFFUL, OK_, false, OOR, 0x1FFFFFUL, OK_, 0x1FFFFFUL, OK_},
     {PFE_CSIG_AC_MANUFACTURER_CODE, 0x7FFU, OK_, false, OOR, 0x7FFU, OK_, 0x7FFU, OK_},
     {PFE_CSIG_AC_ECU_INSTANCE, 7U, OK_, false, OOR, 7U, OK_, 7U, OK_},
@@ -247,6 +251,34 @@ static const sig_case_t sig_cases[PFE_CODEC_SIGNAL_COUNT] = {
     {PFE_CSIG_AC_INDUSTRY_GROUP, 7U, OK_, false, OOR, 7U, OK_, 7U, OK_},
     {PFE_CSIG_AC_ARBITRARY_ADDRESS_CAPABLE, 1U, OK_, false, OOR, 1U, OK_, 1U, OK_},
     {PFE_CSIG_RQST_REQUESTED_PGN, 0x3FFFFUL, OK_, true, OOR, 0xFFFFFFUL, OOR, 0xFFFFFFUL, OOR},
+    {PFE_CSIG_VDS_COMPASS_BEARING, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_VDS_NAV_SPEED, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_VDS_PITCH, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_VDS_ALTITUDE, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_OF_OWN_FUEL_RATE, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_OF_OWN_TOTAL_FUEL_USED, 0xFAFFFFFFUL, OK_, true, OOR, 0xFFFFFFFFUL, NA, 0xFEFFFFFFUL, ERR},
+    {PFE_CSIG_OF_MODEL_IDENTIFIED, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_IS_SPEED_SOURCE, 253U, OK_, true, OOR, 0xFFU, OOR, 0xFFU, OOR},
+    {PFE_CSIG_IS_GRADE_SOURCE_ADDRESS, 253U, OK_, true, OOR, 0xFFU, OOR, 0xFFU, OOR},
+    {PFE_CSIG_IS_FUEL_RATE_SOURCE, 253U, OK_, true, OOR, 0xFFU, OOR, 0xFFU, OOR},
+    {PFE_CSIG_IS_SPEED_SENDERS, 15U, OK_, false, OOR, 15U, OK_, 15U, OK_},
+    {PFE_CSIG_IS_GRADE_SENDERS, 15U, OK_, false, OOR, 15U, OK_, 15U, OK_},
+    {PFE_CSIG_IS_GRADE_SOURCE, 3U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_IS_MASS_SOURCE, 2U, OK_, true, OOR, 15U, OOR, 15U, OOR},
+    {PFE_CSIG_IS_IDENTIFICATION_STATE, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_IS_VEHICLE_MASS, 0xFAFFU, OK_, true, OOR, 0xFFFFU, NA, 0xFEFFU, ERR},
+    {PFE_CSIG_DS_RX_FIFO_OVERRUNS, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_DS_BUS_OFF_EVENTS, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_DS_ERROR_WARNING, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_DS_ERROR_PASSIVE, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_DS_BUS_OFF, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_DS_NVM_WRITE_FAILING, 1U, OK_, true, ERR, 3U, NA, 2U, ERR},
+    {PFE_CSIG_DS_RESET_CAUSE, 3U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_DS_TX_ERROR_COUNTER, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_DS_RX_ERROR_COUNTER, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
+    {PFE_CSIG_DS_NVM_WRITE_FAILURES, 250U, OK_, true, OOR, 0xFFU, NA, 0xFEU, ERR},
 };
 
 static void test_every_signal_boundaries_and_codes(void **state)
@@ -1379,18 +1411,139 @@ static void test_fuel_prediction(void **state)
     assert_int_equal(m.time_ms.state, NA);
 }
 
+/* ------------------------------------------------------------ real-bus inputs and outputs */
+
+/* VDS: altitude 100 m = (100 + 2500) / 0.125 = raw 20800 = 0x5140 in bytes
+ * 7-8; bearing 90 deg = raw 11520 = 0x2D00; pitch 0 = raw 25600 = 0x6400. */
+static void test_vds(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = poisoned_frame();
+    const pfe_msg_vds_t in = {{90000U, OK_}, {0, NA}, {0, OK_}, {100000, OK_}};
+    assert_int_equal(pfe_codec_encode_vds(&f, &in, 0x1CU), 0);
+    assert_int_equal(f.id, 0x98FEE81CUL);
+    assert_payload(&f, 0x00, 0x2D, 0xFF, 0xFF, 0x00, 0x64, 0x40, 0x51);
+    pfe_msg_vds_t m;
+    memset(&m, 0xA5, sizeof m);
+    assert_int_equal(pfe_codec_decode_vds(&f, &m), PFE_OK);
+    assert_int_equal(m.bearing_mdeg.value, 90000);
+    assert_int_equal(m.nav_speed_mm_s.state, NA);
+    assert_int_equal(m.pitch_mdeg.value, 0);
+    assert_int_equal(m.altitude_mm.value, 100000);
+    /* raw 0: -2500 m; raw 0xFAFF: 5531.875 m; raw 0xFEFF: error */
+    f = frame8(0x98FEE800UL, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x00, 0x00);
+    assert_int_equal(pfe_codec_decode_vds(&f, &m), PFE_OK);
+    assert_int_equal(m.altitude_mm.value, -2500000);
+    f.data[6] = 0xFF;
+    f.data[7] = 0xFA;
+    assert_int_equal(pfe_codec_decode_vds(&f, &m), PFE_OK);
+    assert_int_equal(m.altitude_mm.value, 5531875);
+    f.data[7] = 0xFE;
+    assert_int_equal(pfe_codec_decode_vds(&f, &m), PFE_OK);
+    assert_int_equal(m.altitude_mm.state, ERR);
+    f.dlc = 7U;
+    assert_int_equal(pfe_codec_decode_vds(&f, &m), PFE_CODEC_EDLC);
+}
+
+/* CVW: 12000 kg = raw 1200 = 0x04B0 in bytes 3-4; 8000 kg = 0x0320. */
+static void test_cvw(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = poisoned_frame();
+    const pfe_msg_cvw_t in = {{8000U, OK_}, {12000U, OK_}};
+    assert_int_equal(pfe_codec_encode_cvw(&f, &in, 0x27U), 0);
+    assert_int_equal(f.id, 0x98FE7027UL);
+    assert_payload(&f, 0x20, 0x03, 0xB0, 0x04, 0xFF, 0xFF, 0xFF, 0xFF);
+    pfe_msg_cvw_t m;
+    assert_int_equal(pfe_codec_decode_cvw(&f, &m), PFE_OK);
+    assert_int_equal(m.powered_vehicle_kg.value, 8000);
+    assert_int_equal(m.gross_combination_kg.value, 12000);
+    f.data[3] = 0xFF;
+    assert_int_equal(pfe_codec_decode_cvw(&f, &m), PFE_OK);
+    assert_int_equal(m.gross_combination_kg.state, NA);
+}
+
+/* PFE_OwnFuel: 9291667 nL/s * 9 / 125000 = 669.0 = 0x029D; 1.5 L = 0x05DC;
+ * identified: bits 48-49 = 01, the rest of byte 7 ones = 0xFD. */
+static void test_own_fuel(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = poisoned_frame();
+    const pfe_msg_own_fuel_t in = {{9291667U, OK_}, {1500000U, OK_}, {1U, OK_}};
+    assert_int_equal(pfe_codec_encode_own_fuel(&f, &in, 0x8CU), 0);
+    assert_int_equal(f.id, 0x98FF058CUL);
+    assert_payload(&f, 0x9D, 0x02, 0xDC, 0x05, 0x00, 0x00, 0xFD, 0xFF);
+    pfe_msg_own_fuel_t m;
+    assert_int_equal(pfe_codec_decode_own_fuel(&f, &m), PFE_OK);
+    assert_int_equal(m.fuel_rate_nl_s.value, 9291667);
+    assert_int_equal(m.fuel_used_ul.value, 1500000);
+    assert_int_equal(m.model_identified.value, 1);
+    const pfe_msg_own_fuel_t na = {{0U, NA}, {0U, OK_}, {0U, OK_}};
+    assert_int_equal(pfe_codec_encode_own_fuel(&f, &na, 0x8CU), 0);
+    assert_payload(&f, 0xFF, 0xFF, 0x00, 0x00, 0x00, 0x00, 0xFC, 0xFF);
+}
+
+/* PFE_InputStatus: speed from 0x00, grade from 0x1C, no fuel-rate sender
+ * (0xFF), 2 speed and 1 grade senders (0x12), grade from altitude (1), mass
+ * identified (2) and converged (1): byte 6 = 11 01 0010 = 0xD2; 12000 kg =
+ * 0x04B0. */
+static void test_input_status(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = poisoned_frame();
+    const pfe_msg_input_status_t in = {{0x00U, OK_}, {0x1CU, OK_}, {0U, NA},
+                                       {2U, OK_},    {1U, OK_},    {1U, OK_},
+                                       {2U, OK_},    {1U, OK_},    {12000U, OK_}};
+    assert_int_equal(pfe_codec_encode_input_status(&f, &in, 0x8CU), 0);
+    assert_int_equal(f.id, 0x98FF068CUL);
+    assert_payload(&f, 0x00, 0x1C, 0xFF, 0x12, 0x01, 0xD2, 0xB0, 0x04);
+    pfe_msg_input_status_t m;
+    assert_int_equal(pfe_codec_decode_input_status(&f, &m), PFE_OK);
+    assert_int_equal(m.grade_source_address.value, 0x1C);
+    assert_int_equal(m.fuel_rate_source.state, OOR); /* 255: none */
+    assert_int_equal(m.speed_senders.value, 2);
+    assert_int_equal(m.mass_source.value, 2);
+    assert_int_equal(m.identification.value, 1);
+    assert_int_equal(m.vehicle_mass_kg.value, 12000);
+}
+
+/* PFE_DeviceStatus: 3 overruns, 1 bus-off, warning on, NVM failing: byte 3 =
+ * 01 00 00 01 = 0x41; watchdog reset; TEC 97 = 0x61, REC 5, 2 NVM failures. */
+static void test_device_status(void **state)
+{
+    (void)state;
+    pfe_can_frame_t f = poisoned_frame();
+    const pfe_msg_device_status_t in = {{3U, OK_}, {1U, OK_}, {1U, OK_}, {0U, OK_}, {0U, OK_},
+                                        {1U, OK_}, {1U, OK_}, {97U, OK_}, {5U, OK_}, {2U, OK_}};
+    assert_int_equal(pfe_codec_encode_device_status(&f, &in, 0x8CU), 0);
+    assert_int_equal(f.id, 0x98FF078CUL);
+    assert_payload(&f, 0x03, 0x01, 0x41, 0x01, 0x61, 0x05, 0x02, 0xFF);
+    pfe_msg_device_status_t m;
+    assert_int_equal(pfe_codec_decode_device_status(&f, &m), PFE_OK);
+    assert_int_equal(m.tx_error_counter.value, 97);
+    assert_int_equal(m.reset_cause.value, 1);
+    assert_int_equal(m.nvm_write_failing.value, 1);
+    /* counters clamp at 250 and say so */
+    pfe_msg_device_status_t big = in;
+    big.tx_error_counter.value = 255U;
+    assert_int_equal(pfe_codec_encode_device_status(&f, &big, 0x8CU), 1 << 7);
+    assert_int_equal(f.data[4], 0xFA);
+}
+
 static void test_status(void **state)
 {
     (void)state;
     pfe_can_frame_t f = poisoned_frame();
     pfe_msg_status_t in = {
         OK_, NA, ERR, OOR, {PFE_MODE_DEGRADED, OK_}, {3U, OK_}, {0U, OK_}, {250U, OK_},
-        {1U, OK_}, {0U, OK_}, {0U, NA}, {0U, OK_},
+        {1U, OK_}, {0U, OK_}, {0U, NA}, {0U, OK_}, {7U, OK_}, {0U, NA},
     };
     assert_int_equal(pfe_codec_encode_status(&f, &in, 0x8CU), 0);
     assert_int_equal(f.id, 0x98FF048CUL);
-    /* byte 1: 01 (preview out of range) 10 (config error) 11 (grade n/a) 00 (speed valid) */
-    assert_payload(&f, 0x6C, 0x01, 0x03, 0x00, 0xFA, 0x31, 0xFF, 0xFF);
+    /* byte 1: 01 (preview out of range) 10 (config error) 11 (grade n/a) 00 (speed valid);
+     * byte 7: 7 inputs rejected; byte 8: conflicts not available */
+    assert_payload(&f, 0x6C, 0x01, 0x03, 0x00, 0xFA, 0x31, 0x07, 0xFF);
+    in.inputs_rejected.state = NA;
     /* counters hold at 250 (bits 5..7), mode 3 clamps to 2 (bit 4), flag 2 clamps to 1 (bit 8) */
     in.rx_frames_dropped.value = 251U;
     in.tick_overruns.value = 100000U;
@@ -1408,7 +1561,7 @@ static void test_status(void **state)
     assert_int_equal(pfe_codec_encode_status(&f, &in, 0x8CU), PFE_EINVAL);
 
     pfe_msg_status_t m;
-    f = frame8(0x98FF048CUL, 0x6C, 0x01, 0x03, 0x00, 0xFA, 0x31, 0xFF, 0xFF);
+    f = frame8(0x98FF048CUL, 0x6C, 0x01, 0x03, 0x00, 0xFA, 0x31, 0x07, 0xFB);
     memset(&m, 0xA5, sizeof m);
     assert_int_equal(pfe_codec_decode_status(&f, &m), PFE_OK);
     assert_int_equal(m.speed_input, OK_);
@@ -1423,6 +1576,8 @@ static void test_status(void **state)
     assert_int_equal(m.speed_clamped.value, 0);
     assert_int_equal(m.grade_clamped.state, NA);
     assert_int_equal(m.output_saturated.state, OK_);
+    assert_int_equal(m.inputs_rejected.value, 7);
+    assert_int_equal(m.address_conflicts.state, OOR); /* 0xFB: above 250 */
     f = frame8(0x98FF048CUL, 0x00, 0x03, 0xFB, 0xFE, 0xFF, 0x0E, 0xFF, 0xFF);
     assert_int_equal(pfe_codec_decode_status(&f, &m), PFE_OK);
     assert_int_equal(m.mode.state, OOR);
@@ -1594,6 +1749,11 @@ int main(void)
         cmocka_unit_test(test_hrlfc),
         cmocka_unit_test(test_fuel_prediction),
         cmocka_unit_test(test_status),
+        cmocka_unit_test(test_vds),
+        cmocka_unit_test(test_cvw),
+        cmocka_unit_test(test_own_fuel),
+        cmocka_unit_test(test_input_status),
+        cmocka_unit_test(test_device_status),
         cmocka_unit_test(test_name_pack_unpack),
         cmocka_unit_test(test_address_claimed),
         cmocka_unit_test(test_request),

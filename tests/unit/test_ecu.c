@@ -30,9 +30,19 @@ static uint32_t g_ntx;
 
 static pfe_ecu_config_t config(void)
 {
-    const pfe_ecu_config_t c = {PFE_ECU_DEFAULT_ADDRESS, OUR_NAME, 1000U, &pfe_default_vehicle,
-                                &pfe_default_env, &pfe_default_drag, 1U, 0U, 10000U,
-                                &pfe_default_cruise, 25000};
+    const pfe_ecu_config_t c = {
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = OUR_NAME,
+        .save_interval_ms = 1000U,
+        .vehicle = &pfe_default_vehicle,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = 1U,
+        .default_position = 0U,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = 25000,
+    };
     return c;
 }
 
@@ -99,21 +109,30 @@ static void test_claims_address_then_keeps_schedule(void **state)
         tick(true, true);
         assert_int_equal(g_ntx, 0);
     }
-    uint32_t lfe1 = 0U, pf = 0U, hrlfc = 0U, pred = 0U, status = 0U;
+    uint32_t lfe1 = 0U, pf = 0U, hrlfc = 0U, pred = 0U, status = 0U, own = 0U, input = 0U, device = 0U;
     for (uint32_t k = 0U; k < 1000U; k++) { /* 10 s */
         tick(true, true);
-        assert_true(g_ntx <= 2U);
+        assert_in_range(g_ntx, 0U, 2U);
         lfe1 += (sent(PFE_PGN_LFE1) != NULL) ? 1U : 0U;
         pf += (sent(PFE_PGN_PLATOON_FUEL) != NULL) ? 1U : 0U;
         hrlfc += (sent(PFE_PGN_HRLFC) != NULL) ? 1U : 0U;
         pred += (sent(PFE_PGN_FUEL_PREDICTION) != NULL) ? 1U : 0U;
         status += (sent(PFE_PGN_STATUS) != NULL) ? 1U : 0U;
+        own += (sent(PFE_PGN_OWN_FUEL) != NULL) ? 1U : 0U;
+        input += (sent(PFE_PGN_INPUT_STATUS) != NULL) ? 1U : 0U;
+        device += (sent(PFE_PGN_DEVICE_STATUS) != NULL) ? 1U : 0U;
     }
-    assert_int_equal(lfe1, 100);
+    /* LFE1 and HRLFC wait three of their periods for another sender: the
+     * first LFE1 slot (250 ms after start) and HRLFC's at 0.27, 1.27 and
+     * 2.27 s stay silent. */
+    assert_int_equal(lfe1, 99);
     assert_int_equal(pf, 100);
-    assert_int_equal(hrlfc, 10);
+    assert_int_equal(hrlfc, 7);
     assert_int_equal(pred, 10);
     assert_int_equal(status, 10);
+    assert_int_equal(own, 100);
+    assert_int_equal(input, 10);
+    assert_int_equal(device, 10);
 }
 
 /* Runs until an LFE1 goes out and decodes it. */
@@ -208,7 +227,9 @@ static void test_speed_timeout_within_three_periods_and_recovery(void **state)
 static void test_grade_timeout_and_sender_error_values(void **state)
 {
     (void)state;
-    const pfe_ecu_config_t c = config();
+    /* With the flat road forbidden, a missing grade means no estimate. */
+    pfe_ecu_config_t c = config();
+    c.flat_grade_forbidden = true;
     start(&c, NULL, -1);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
@@ -230,7 +251,7 @@ static void test_grade_timeout_and_sender_error_values(void **state)
         tick(false, true);
     }
     assert_true((g_ecu.out->flags & PFE_EST_VALID) == 0U);
-    assert_int_equal(g_ecu.speed.state, PFE_SIG_ERROR);
+    assert_int_equal(g_ecu.in[PFE_IN_SPEED].state, PFE_SIG_ERROR);
     /* Out of range (parameter-specific raw 0xFB00): out of range. */
     pfe_can_frame_t f;
     const pfe_msg_ccvs1_t m = {{25000, PFE_SIG_VALID}};
@@ -239,7 +260,7 @@ static void test_grade_timeout_and_sender_error_values(void **state)
     f.data[2] = 0xFBU;
     pfe_ecu_receive(&g_ecu, &f, g_now);
     tick(false, true);
-    assert_int_equal(g_ecu.speed.state, PFE_SIG_OUT_OF_RANGE);
+    assert_int_equal(g_ecu.in[PFE_IN_SPEED].state, PFE_SIG_OUT_OF_RANGE);
     assert_true((g_ecu.out->flags & PFE_EST_VALID) == 0U);
 }
 
@@ -248,7 +269,7 @@ static void test_requests(void **state)
     (void)state;
     const pfe_ecu_config_t c = config();
     start(&c, NULL, -1);
-    for (uint32_t k = 0U; k < 30U; k++) {
+    for (uint32_t k = 0U; k < 330U; k++) { /* HRLFC is sent 3 s after start, none other sending */
         tick(true, true);
     }
     while ((g_now / 10000U) % 100U != 50U) {
@@ -471,7 +492,11 @@ static void test_receive_filters(void **state)
     assert_true(passes_filters(0x98EA8C00UL));  /* Request to 0x8C */
     assert_true(passes_filters(0x98EAFF00UL));  /* Request to all */
     assert_true(passes_filters(0x98EEFF10UL));  /* Address Claimed */
-    assert_false(passes_filters(0x98FEF200UL)); /* LFE1: an output */
+    assert_true(passes_filters(0x98FEF200UL));  /* LFE1 of the engine */
+    assert_true(passes_filters(0x98FD0900UL));  /* HRLFC of the engine */
+    assert_true(passes_filters(0x98FEE817UL));  /* VDS */
+    assert_true(passes_filters(0x98FE7027UL));  /* CVW */
+    assert_false(passes_filters(0x98FF058CUL)); /* PFE_OwnFuel: an output */
     assert_false(passes_filters(0x98FF0400UL)); /* PFE_Status: an output */
     assert_false(passes_filters(0x18FEF100UL)); /* no EFF flag: an 11-bit id */
     assert_false(passes_filters(0x000007FFUL)); /* 11-bit */

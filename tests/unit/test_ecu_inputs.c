@@ -31,9 +31,19 @@ static uint32_t g_ntx;
 
 static pfe_ecu_config_t config(void)
 {
-    const pfe_ecu_config_t c = {PFE_ECU_DEFAULT_ADDRESS, OUR_NAME, 1000U, &pfe_default_vehicle,
-                                &pfe_default_env, &pfe_default_drag, 1U, 0U, 10000U,
-                                &pfe_default_cruise, 25000};
+    const pfe_ecu_config_t c = {
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = OUR_NAME,
+        .save_interval_ms = 1000U,
+        .vehicle = &pfe_default_vehicle,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = 1U,
+        .default_position = 0U,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = 25000,
+    };
     return c;
 }
 
@@ -167,8 +177,8 @@ static void test_rejects_and_counts_bad_frames(void **state)
     tick();
     assert_int_equal(g_ecu.count.rx_rejected, 5);
     /* None of them touched an input. */
-    assert_int_equal(g_ecu.speed.state, PFE_SIG_NOT_AVAILABLE);
-    assert_int_equal(g_ecu.grade.state, PFE_SIG_NOT_AVAILABLE);
+    assert_int_equal(g_ecu.in[PFE_IN_SPEED].state, PFE_SIG_NOT_AVAILABLE);
+    assert_int_equal(g_ecu.in[PFE_IN_GRADE].state, PFE_SIG_NOT_AVAILABLE);
     assert_int_equal(g_ecu.config.state, PFE_SIG_NOT_AVAILABLE);
     assert_int_equal(g_ecu.count.requests_answered, 0);
 

@@ -418,9 +418,19 @@ static uint64_t g_now;
 static void ecu_start(uint32_t n, uint32_t position, const pfe_vehicle_calib_t *v,
                       const pfe_nvm_state_t *restored)
 {
-    const pfe_ecu_config_t c = {PFE_ECU_DEFAULT_ADDRESS, 0x80A0000012345678ULL, 1000U, v,
-                                &pfe_default_env, &pfe_default_drag, n, position, 10000U,
-                                &pfe_default_cruise, 25000};
+    const pfe_ecu_config_t c = {
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = 0x80A0000012345678ULL,
+        .save_interval_ms = 1000U,
+        .vehicle = v,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = n,
+        .default_position = position,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = 25000,
+    };
     g_now = 1000000U;
     memset(&g_ecu, 0xA5, sizeof g_ecu);
     assert_int_equal(pfe_ecu_init(&g_ecu, &c, restored, (restored != NULL) ? 0 : -1, g_now), PFE_OK);
@@ -507,7 +517,7 @@ static void test_ecu_status_says_output_clamped(void **state)
     r.own_fuel_ul = TOTAL_MAX_UL + 500U;
     ecu_start(1U, 0U, &pfe_default_vehicle, &r);
     bool hrlfc = false;
-    for (uint32_t k = 0U; (k < 150U) && !hrlfc; k++) {
+    for (uint32_t k = 0U; (k < 450U) && !hrlfc; k++) { /* HRLFC from 3 s on */
         ecu_tick(0U, 0U);
         const pfe_can_frame_t *f = sent(PFE_PGN_HRLFC);
         if (f != NULL) {

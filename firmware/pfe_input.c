@@ -1,0 +1,200 @@
+/* pfe_input.c - sender arbitration and plausibility of one input (contract in pfe_input.h). */
+#include "pfe_input.h"
+
+#include <stddef.h>
+#include <string.h>
+
+#include "pfe_calib.h"
+
+/* Plausibility table (pfe_input.h gives the reasons for each figure). */
+const pfe_input_rule_t pfe_input_rules[PFE_IN_COUNT] = {
+    /* CCVS1 speed, mm/s: 0 .. 150 km/h, 10 m/s^2 + 1 m/s a frame */
+    [PFE_IN_SPEED] = {PFE_PGN_CCVS1, 100000U, 0, 41667, 10000U, 1000U},
+    /* SSI pitch as grade, ppm: +-50 %, 20 %/s + 0.5 % a frame */
+    [PFE_IN_GRADE] = {PFE_PGN_SSI, 10000U, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM, 200000U, 5000U},
+    /* VDS altitude, mm: the signal's range, 15 m/s + 10 m a frame */
+    [PFE_IN_ALTITUDE] = {PFE_PGN_VDS, 100000U, -2500000, 5531875, 15000U, 10000U},
+    /* CVW gross combination weight, kg: the calibration's range */
+    [PFE_IN_MASS] = {PFE_PGN_CVW, 1000000U, (int32_t)PFE_MASS_MIN_KG, (int32_t)PFE_MASS_MAX_KG, 0U, 0U},
+    /* LFE1 engine fuel rate, nL/s: 0 .. 250 L/h */
+    [PFE_IN_ENGINE_FUEL] = {PFE_PGN_LFE1, 100000U, 0, 69444444, 0U, 0U},
+};
+
+void pfe_input_init(pfe_input_t *in, pfe_input_kind_t kind, uint8_t fixed_source)
+{
+    (void)memset(in, 0, sizeof *in);
+    in->kind = kind;
+    in->fixed = fixed_source != PFE_INPUT_NO_SOURCE;
+    in->locked = fixed_source;
+    in->state = PFE_SIG_NOT_AVAILABLE;
+}
+
+static uint64_t stale_us(const pfe_input_t *in)
+{
+    return (uint64_t)PFE_INPUT_STALE_PERIODS * pfe_input_rules[in->kind].period_us;
+}
+
+static void note_sender(pfe_input_t *in, uint8_t source)
+{
+    for (uint32_t k = 0U; k < in->n_senders; k++) {
+        if (in->senders[k] == source) {
+            return;
+        }
+    }
+    if (in->n_senders < PFE_INPUT_MAX_SENDERS) {
+        in->senders[in->n_senders] = source;
+        in->n_senders++;
+    }
+}
+
+static bool in_range(const pfe_input_t *in, int32_t value)
+{
+    const pfe_input_rule_t *r = &pfe_input_rules[in->kind];
+    return (value >= r->min) && (value <= r->max);
+}
+
+/* Step 1: is the frame the input's? A new sender is taken only with a
+ * valid value inside the plausible range. */
+static bool arbitrate(pfe_input_t *in, uint8_t source, pfe_sig_state_t state, int32_t value,
+                      uint64_t rx_us)
+{
+    if (in->fixed) {
+        return source == in->locked;
+    }
+    if (source == in->locked) {
+        return true;
+    }
+    const bool none = in->locked == PFE_INPUT_NO_SOURCE;
+    const bool stale = none || ((rx_us - in->locked_valid_us) > stale_us(in));
+    if ((state == PFE_SIG_VALID) && stale && in_range(in, value)) {
+        /* a new sender: its value has no rate reference from the old one */
+        in->locked = source;
+        in->have_ref = false;
+        return true;
+    }
+    return false;
+}
+
+static uint32_t abs_diff(int32_t a, int32_t b)
+{
+    const int64_t d = (int64_t)a - (int64_t)b;
+    return (uint32_t)((d < 0) ? -d : d);
+}
+
+typedef enum { PLAUSIBLE, OUT_OF_RANGE, TOO_FAST } plausibility_t;
+
+/* Step 2: within range, and within rate * dt + margin of the reference. */
+static plausibility_t plausible(const pfe_input_t *in, int32_t value, uint64_t rx_us)
+{
+    const pfe_input_rule_t *r = &pfe_input_rules[in->kind];
+    if (!in_range(in, value)) {
+        return OUT_OF_RANGE;
+    }
+    if (!in->have_ref || (r->max_rate_per_s == 0U)) {
+        return PLAUSIBLE;
+    }
+    uint64_t dt_us = rx_us - in->last_us;
+    if (dt_us > stale_us(in)) {
+        dt_us = stale_us(in);
+    }
+    /* rate * dt: rate < 2^18, dt <= 3 s: below 2^40 */
+    const uint64_t allowed = (((uint64_t)r->max_rate_per_s * dt_us) / 1000000U) + r->margin;
+    return ((uint64_t)abs_diff(value, in->last_value) <= allowed) ? PLAUSIBLE : TOO_FAST;
+}
+
+static void count_reject(pfe_input_t *in)
+{
+    if (in->rejected < UINT32_MAX) {
+        in->rejected++;
+    }
+}
+
+static pfe_input_verdict_t take_valid(pfe_input_t *in, int32_t value, uint64_t rx_us)
+{
+    const plausibility_t p = plausible(in, value, rx_us);
+    if (p != PLAUSIBLE) {
+        count_reject(in);
+        if (in->rejects_in_row < UINT8_MAX) {
+            in->rejects_in_row++;
+        }
+        if (in->error) {
+            /* Still in error, and current: confirmation starts again, from
+             * this frame when only its change was too fast. */
+            in->rx_us = rx_us;
+            in->have_ref = p == TOO_FAST;
+            in->confirm_left = (uint8_t)PFE_INPUT_CONFIRM_FRAMES;
+            if (p == TOO_FAST) {
+                in->confirm_left = (uint8_t)(PFE_INPUT_CONFIRM_FRAMES - 1U);
+            }
+            in->last_value = value;
+            in->last_us = rx_us;
+        } else if (in->rejects_in_row >= PFE_INPUT_REJECTS_TO_ERROR) {
+            in->error = true;
+            in->state = PFE_SIG_ERROR;
+            in->value = 0;
+            in->rx_us = rx_us;
+            in->confirm_left = (uint8_t)PFE_INPUT_CONFIRM_FRAMES;
+            in->have_ref = false;
+        } else {
+            /* keep the last accepted value and its reference */
+        }
+        return PFE_INPUT_REJECTED;
+    }
+    in->rejects_in_row = 0U;
+    in->last_value = value;
+    in->last_us = rx_us;
+    in->have_ref = true;
+    in->locked_valid_us = rx_us;
+    if (in->error) {
+        if (in->confirm_left > 1U) {
+            in->confirm_left--;
+            in->rx_us = rx_us; /* an input in error is current, not stale */
+            return PFE_INPUT_CONFIRMING;
+        }
+        in->error = false;
+        in->confirm_left = 0U;
+    }
+    in->state = PFE_SIG_VALID;
+    in->value = value;
+    in->rx_us = rx_us;
+    return PFE_INPUT_ACCEPTED;
+}
+
+pfe_input_verdict_t pfe_input_take(pfe_input_t *in, uint8_t source, pfe_sig_state_t state,
+                                   int32_t value, uint64_t rx_us)
+{
+    note_sender(in, source);
+    if (!arbitrate(in, source, state, value, rx_us)) {
+        return PFE_INPUT_IGNORED;
+    }
+    if (state == PFE_SIG_VALID) {
+        return take_valid(in, value, rx_us);
+    }
+    /* The locked sender says not available, error or out of range. */
+    in->state = state;
+    in->value = 0;
+    in->rx_us = rx_us;
+    if ((state == PFE_SIG_ERROR) && !in->fixed) {
+        /* any other sender with a valid value may take over at once */
+        in->locked_valid_us = rx_us - stale_us(in) - 1U;
+    }
+    return PFE_INPUT_ACCEPTED;
+}
+
+bool pfe_input_age(pfe_input_t *in, uint64_t now_us)
+{
+    if ((in->state != PFE_SIG_NOT_AVAILABLE) && ((now_us - in->rx_us) > stale_us(in))) {
+        in->state = PFE_SIG_NOT_AVAILABLE;
+        in->value = 0;
+        in->have_ref = false;
+        in->error = false;
+        in->confirm_left = 0U;
+        in->rejects_in_row = 0U;
+    }
+    return in->state == PFE_SIG_VALID;
+}
+
+uint8_t pfe_input_source(const pfe_input_t *in)
+{
+    return in->locked;
+}
