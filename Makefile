@@ -153,6 +153,7 @@ include mk/hardening.mk
 include mk/fuzz.mk
 include mk/nvm.mk
 include mk/san.mk
+include mk/load.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
