@@ -860,7 +860,11 @@ static void age_inputs(pfe_ecu_t *ecu, uint64_t now_us)
 uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint32_t tx_cap)
 {
     ecu->now_us = now_us;
-    ecu->speed_fresh = false;
+    /* A speed sample that comes while a platoon is built (the estimator
+     * paused) waits for the estimator's next step: warm-up loses none. */
+    if (!ecu->platoon_building) {
+        ecu->speed_fresh = false;
+    }
     /* Bounded work: PFE_ECU_RX_PER_TICK frames (PFE_ECU_RX_LIGHT while a
      * platoon is being built), then either a share of the rebuild or of the
      * prediction, only in a tick that decoded at most PFE_ECU_RX_LIGHT.
