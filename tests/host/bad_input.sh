@@ -166,6 +166,7 @@ number_cases sensitivity --vehicles "$T/sensitivity" --no-plot --out "$O/sens" -
 check "sensitivity --out a file" 1 "$T/sensitivity" --no-plot --out "$W/in/empty" --vehicles 0
 
 number_cases pfe_record -n "$T/pfe_record" -- vcan0
+number_cases pfe_record --rcvbuf "$T/pfe_record" -- vcan0
 check "pfe_record empty interface name" 1 "$T/pfe_record" ""
 check "pfe_record -o directory" 1 "$T/pfe_record" -o "$W/in/dir" vcan0
 
