@@ -44,7 +44,7 @@ const pfe_codec_message_t pfe_codec_messages[PFE_MSG_COUNT] = {
                                  RX | TX, 0U, (uint8_t)PFE_CSIG_AC_IDENTITY_NUMBER, 10U},
     [PFE_MSG_REQUEST] = {"Request", PFE_PGN_REQUEST, 6U, SA_IN, 3U, RX | TX, 0U,
                          (uint8_t)PFE_CSIG_RQST_REQUESTED_PGN, 1U},
-    [PFE_MSG_VDS] = {"VDS", PFE_PGN_VDS, 6U, SA_IN, 8U, RX, 100U,
+    [PFE_MSG_VDS] = {"VDS", PFE_PGN_VDS, 6U, SA_IN, 8U, RX, 1000U,
                      (uint8_t)PFE_CSIG_VDS_COMPASS_BEARING, 4U},
     [PFE_MSG_CVW] = {"CVW", PFE_PGN_CVW, 6U, SA_IN, 8U, RX, 0U,
                      (uint8_t)PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT, 2U},

@@ -65,6 +65,14 @@ static void platoon_config(const pfe_ecu_t *ecu, pfe_platoon_config_t *pc, uint3
     }
 }
 
+/* The drag reduction of the own truck's position, for identification. */
+static void identify_position(pfe_ecu_t *ecu)
+{
+    (void)pfe_identify_set_drag_reduction(
+        &ecu->identify, pfe_drag_reduction_bp(ecu->cfg.drag, ecu->own_position,
+                                              ecu->platoon.n_vehicles, ecu->platoon.gap_mm));
+}
+
 /* The platoon at once (start-up). Totals carry over: the own truck's to
  * its new position. */
 static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
@@ -82,6 +90,7 @@ static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap
     ecu->own_position = position;
     (void)pfe_estimator_set_fuel_used_ul(&ecu->est, (int32_t)position, own);
     (void)pfe_estimator_set_fuel_used_ul(&ecu->est, PFE_EST_PLATOON, platoon);
+    identify_position(ecu);
     return PFE_OK;
 }
 
@@ -149,6 +158,7 @@ static bool rebuild_step(pfe_ecu_t *ecu)
         ecu->own_position = ecu->build_position;
         (void)pfe_estimator_set_fuel_used_ul(&ecu->est, (int32_t)ecu->build_position, ecu->build_own_ul);
         (void)pfe_estimator_set_fuel_used_ul(&ecu->est, PFE_EST_PLATOON, ecu->build_platoon_ul);
+        identify_position(ecu);
         ecu->degraded = false;
     } else {
         /* positions built, more to come */
@@ -156,48 +166,88 @@ static bool rebuild_step(pfe_ecu_t *ecu)
     return true;
 }
 
-/* The own truck's mass changed (CVW): the last of a tick waits for
- * apply_own_mass() after the queue. */
-static void remodel_own_truck(pfe_ecu_t *ecu, uint32_t mass_kg, uint8_t source)
+/* The own truck's mass or auxiliary power changed (CVW, identification):
+ * the own truck's position of the same platoon built again with it, and
+ * the aggregates (about 3,600 Cortex-M4 instructions); the estimator keeps
+ * its filter and totals, the prediction restarts. During a build, the build
+ * starts again with it. Returns whether the model changed. */
+static bool remodel_own_truck(pfe_ecu_t *ecu, uint32_t mass_kg, uint32_t aux_w)
+{
+    pfe_vehicle_calib_t c = ecu->own_calib;
+    c.mass_kg = mass_kg;
+    c.power_aux_w = aux_w;
+    if ((pfe_calib_check_vehicle(&c) != PFE_OK) ||
+        ((mass_kg == ecu->own_calib.mass_kg) && (aux_w == ecu->own_calib.power_aux_w))) {
+        return false;
+    }
+    const pfe_vehicle_calib_t old = ecu->own_calib;
+    ecu->own_calib = c;
+    if (ecu->platoon_building) {
+        (void)rebuild_start(ecu, ecu->build_n, ecu->build_position, ecu->build_gap_mm);
+        return true;
+    }
+    pfe_platoon_config_t pc;
+    platoon_config(ecu, &pc, ecu->platoon.n_vehicles, ecu->own_position, ecu->platoon.gap_mm);
+    if ((pfe_platoon_init_positions(&ecu->platoon, &pc, ecu->own_position, 1U) != PFE_OK) ||
+        (pfe_platoon_init_finish(&ecu->platoon, &pc) != PFE_OK)) {
+        ecu->own_calib = old; /* a platoon the old values built: build it again */
+        platoon_config(ecu, &pc, ecu->platoon.n_vehicles, ecu->own_position, ecu->platoon.gap_mm);
+        (void)pfe_platoon_init(&ecu->platoon, &pc);
+        return false;
+    }
+    pfe_predict_cancel(&ecu->predict);
+    return true;
+}
+
+/* CVW's mass: the last of a tick waits for apply_own_mass() after the queue. */
+static void note_own_mass(pfe_ecu_t *ecu, uint32_t mass_kg)
 {
     ecu->mass_next_kg = mass_kg;
-    ecu->mass_next_source = source;
     ecu->mass_next_pending = true;
 }
 
-/* The tick's last new mass: the own truck's position of the same platoon
- * built again with it, and the aggregates (about 3,600 Cortex-M4
- * instructions); the estimator keeps its filter and totals, the prediction
- * restarts. During a build, the build starts again with it. */
+/* The tick's last CVW mass, once (remodel_own_truck()). */
 static void apply_own_mass(pfe_ecu_t *ecu)
 {
     if (!ecu->mass_next_pending) {
         return;
     }
     ecu->mass_next_pending = false;
-    pfe_vehicle_calib_t c = ecu->own_calib;
-    c.mass_kg = ecu->mass_next_kg;
-    if ((pfe_calib_check_vehicle(&c) != PFE_OK) || (c.mass_kg == ecu->own_calib.mass_kg)) {
+    (void)remodel_own_truck(ecu, ecu->mass_next_kg, ecu->own_calib.power_aux_w);
+}
+
+/* Identified values differ from those in use by this much before the model
+ * is rebuilt, and at most once per PFE_ECU_REMODEL_MIN_US. */
+#define REMODEL_MASS_KG 200U
+#define REMODEL_AUX_W 1000U
+#define PFE_ECU_REMODEL_MIN_US 10000000U
+
+static uint32_t abs_diff_u32(uint32_t a, uint32_t b)
+{
+    return (a > b) ? (a - b) : (b - a);
+}
+
+/* Once identification has converged, the own truck's model takes its mass
+ * (unless CVW gave one) and its auxiliary power. */
+static void use_identified(pfe_ecu_t *ecu)
+{
+    if (!pfe_identify_converged(&ecu->identify)) {
         return;
     }
-    const pfe_vehicle_calib_t old = ecu->own_calib;
-    ecu->own_calib = c;
-    if (ecu->platoon_building) {
-        ecu->mass_source = ecu->mass_next_source;
-        (void)rebuild_start(ecu, ecu->build_n, ecu->build_position, ecu->build_gap_mm);
-        return;
+    const uint32_t mass = ecu->cvw_mass ? ecu->own_calib.mass_kg : pfe_identify_mass_kg(&ecu->identify);
+    const uint32_t aux = pfe_identify_aux_power_w(&ecu->identify);
+    const bool differs = (abs_diff_u32(mass, ecu->own_calib.mass_kg) >= REMODEL_MASS_KG) ||
+                         (abs_diff_u32(aux, ecu->own_calib.power_aux_w) >= REMODEL_AUX_W);
+    const bool first = !ecu->aux_identified;
+    const bool due = !ecu->remodelled || ((ecu->now_us - ecu->remodel_us) >= PFE_ECU_REMODEL_MIN_US);
+    if ((first || (differs && due)) && remodel_own_truck(ecu, mass, aux)) {
+        ecu->remodel_us = ecu->now_us;
+        ecu->remodelled = true;
     }
-    pfe_platoon_config_t pc;
-    platoon_config(ecu, &pc, ecu->platoon.n_vehicles, ecu->own_position, ecu->platoon.gap_mm);
-    if ((pfe_platoon_init_positions(&ecu->platoon, &pc, ecu->own_position, 1U) != PFE_OK) ||
-        (pfe_platoon_init_finish(&ecu->platoon, &pc) != PFE_OK)) {
-        ecu->own_calib = old; /* a platoon the old mass built: build it again */
-        platoon_config(ecu, &pc, ecu->platoon.n_vehicles, ecu->own_position, ecu->platoon.gap_mm);
-        (void)pfe_platoon_init(&ecu->platoon, &pc);
-        return;
+    ecu->aux_identified = true;
+    if (!ecu->cvw_mass) {
+        ecu->mass_source = (uint8_t)PFE_MASS_SOURCE_IDENTIFIED;
     }
-    ecu->mass_source = ecu->mass_next_source;
-    pfe_predict_cancel(&ecu->predict);
 }
 
 int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_state_t *restored,
@@ -227,6 +277,9 @@ int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_stat
     }
     ecu->own_calib = *own;
     ecu->mass_source = (uint8_t)PFE_MASS_SOURCE_CALIBRATION;
+    if (pfe_identify_init(&ecu->identify, own, cfg->env) != PFE_OK) {
+        return PFE_EINVAL;
+    }
     for (uint32_t k = 0U; k < (uint32_t)PFE_IN_COUNT; k++) {
         pfe_input_init(&ecu->in[k], (pfe_input_kind_t)k,
                        cfg->input_source_fixed[k] ? cfg->input_source[k] : (uint8_t)PFE_INPUT_NO_SOURCE);
@@ -468,7 +521,9 @@ static void on_cvw(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint8_t sa, uint64_
     const pfe_sig_u32_t gcw = m.gross_combination_kg;
     if (take_input(ecu, PFE_IN_MASS, sa, gcw.state, (int32_t)gcw.value, rx_us) &&
         (ecu->in[PFE_IN_MASS].state == PFE_SIG_VALID)) {
-        remodel_own_truck(ecu, gcw.value, (uint8_t)PFE_MASS_SOURCE_CVW);
+        note_own_mass(ecu, gcw.value);
+        ecu->cvw_mass = true;
+        ecu->mass_source = (uint8_t)PFE_MASS_SOURCE_CVW;
     }
 }
 
@@ -480,20 +535,45 @@ static void on_lfe1(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint8_t sa, uint64
         count_up(&ecu->count.rx_rejected, 1U);
         return;
     }
-    ecu->other_lfe1_us = rx_us;
-    ecu->other_lfe1_seen = true;
-    (void)take_input(ecu, PFE_IN_ENGINE_FUEL, sa, m.fuel_rate_nl_s.state,
-                     (int32_t)m.fuel_rate_nl_s.value, rx_us);
+    /* A node that sends LFE1 with the rate "not available" (a cab
+     * controller) reports no fuel rate: only one with a value is shadowed. */
+    if (m.fuel_rate_nl_s.state != PFE_SIG_NOT_AVAILABLE) {
+        ecu->other_lfe1_us = rx_us;
+        ecu->other_lfe1_seen = true;
+    }
+    if (!take_input(ecu, PFE_IN_ENGINE_FUEL, sa, m.fuel_rate_nl_s.state,
+                    (int32_t)m.fuel_rate_nl_s.value, rx_us) ||
+        ecu->cfg.identification_off) {
+        return;
+    }
+    /* One identification sample per accepted LFE1 of the engine, with the
+     * speed and grade in use at that instant (the grade of the last tick). */
+    const bool measured = ecu->grade_source <= (uint8_t)PFE_GRADE_SOURCE_ALTITUDE;
+    const bool flat = ecu->grade_source == (uint8_t)PFE_GRADE_SOURCE_ASSUMED_FLAT;
+    pfe_identify_sample_t smp;
+    smp.now_us = rx_us;
+    smp.speed_mm_s = ecu->speed_mm_s;
+    smp.grade_ppm = ecu->grade_ppm;
+    smp.fuel_rate_nl_s = m.fuel_rate_nl_s.value;
+    smp.speed_valid = ecu->in[PFE_IN_SPEED].state == PFE_SIG_VALID;
+    smp.grade_valid = measured || (flat && !ecu->cfg.identification_needs_grade);
+    smp.fuel_valid = ecu->in[PFE_IN_ENGINE_FUEL].state == PFE_SIG_VALID;
+    smp.braking = false; /* the module reads no brake signal */
+    (void)pfe_identify_step(&ecu->identify, &smp);
+    use_identified(ecu);
 }
 
 static void on_hrlfc(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
 {
-    if (f->dlc != 8U) {
+    pfe_msg_hrlfc_t m;
+    if (pfe_codec_decode_hrlfc(f, &m) < 0) {
         count_up(&ecu->count.rx_rejected, 1U);
         return;
     }
-    ecu->other_hrlfc_us = rx_us;
-    ecu->other_hrlfc_seen = true;
+    if (m.total_fuel_ul.state != PFE_SIG_NOT_AVAILABLE) {
+        ecu->other_hrlfc_us = rx_us;
+        ecu->other_hrlfc_seen = true;
+    }
 }
 
 static void on_preview(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
@@ -683,7 +763,8 @@ static void encode_input_status(const pfe_ecu_t *ecu, pfe_can_frame_t *f)
     m.grade_senders = sig_u32(ecu->in[PFE_IN_GRADE].n_senders, true);
     m.grade_source = sig_u32(ecu->grade_source, true);
     m.mass_source = sig_u32(ecu->mass_source, true);
-    m.identification = sig_u32(0U, true);
+    m.identification = sig_u32(pfe_identify_converged(&ecu->identify) ? 1U : 0U,
+                               !ecu->cfg.identification_off);
     m.vehicle_mass_kg = sig_u32(ecu->own_calib.mass_kg, true);
     (void)pfe_codec_encode_input_status(f, &m, ecu->address);
 }
@@ -739,7 +820,7 @@ static int encode_fuel_output(pfe_ecu_t *ecu, uint32_t which, pfe_can_frame_t *f
         pfe_msg_own_fuel_t m;
         m.fuel_rate_nl_s = own_rate(ecu);
         m.fuel_used_ul = sig_u64(pfe_ecu_own_fuel_ul(ecu));
-        m.model_identified = sig_u32(0U, true);
+        m.model_identified = sig_u32(ecu->aux_identified ? 1U : 0U, true);
         r = pfe_codec_encode_own_fuel(f, &m, sa);
     } else {
         const pfe_predict_result_t *p = pfe_predict_result(&ecu->predict);

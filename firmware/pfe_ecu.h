@@ -58,6 +58,7 @@
 #include "pfe_can.h"
 #include "pfe_codec.h"
 #include "pfe_estimator.h"
+#include "pfe_identify.h"
 #include "pfe_input.h"
 #include "pfe_nvm.h"
 #include "pfe_platoon.h"
@@ -115,6 +116,11 @@ typedef struct {
     uint8_t input_source[PFE_IN_COUNT];    /* that sender's source address */
     bool flat_grade_forbidden;         /* no grade source: no estimate (else the road is assumed flat) */
     pfe_ecu_j1939_fuel_t j1939_fuel;
+    /* Identification of the own truck's mass and auxiliary power from the
+     * engine's LFE1 (pfe_identify.h): off, or only on a measured grade (SSI
+     * or altitude; else the assumed flat road is used as well). */
+    bool identification_off;
+    bool identification_needs_grade;
 } pfe_ecu_config_t;
 
 /* Input states in PFE_Status (can_dbc/pfe.dbc VAL_). */
@@ -191,8 +197,13 @@ typedef struct {
     uint64_t odometer_um;              /* distance travelled, from the speed in use */
     uint8_t grade_source;              /* PFE_GRADE_SOURCE_* of the last tick */
     /* the own truck's model */
-    pfe_vehicle_calib_t own_calib;     /* in use: calibration, mass from CVW */
+    pfe_vehicle_calib_t own_calib;     /* in use: calibration, CVW's mass, identified values */
     uint8_t mass_source;               /* PFE_MASS_SOURCE_* */
+    bool cvw_mass;                     /* a valid CVW has given the mass */
+    bool aux_identified;               /* own_calib.power_aux_w is the identified one */
+    pfe_identify_t identify;
+    uint64_t remodel_us;               /* last rebuild for identified values */
+    bool remodelled;
     /* other nodes' LFE1 and HRLFC: the module does not shadow them */
     uint64_t other_lfe1_us;
     uint64_t other_hrlfc_us;
@@ -225,7 +236,6 @@ typedef struct {
     uint32_t build_old_gap_mm;
     /* the tick's last new mass of the own truck (CVW), applied once after the queue */
     uint32_t mass_next_kg;
-    uint8_t mass_next_source;
     bool mass_next_pending;
     pfe_estimator_t est;
     /* prediction over the preview */

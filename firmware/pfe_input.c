@@ -9,15 +9,15 @@
 /* Plausibility table (pfe_input.h gives the reasons for each figure). */
 const pfe_input_rule_t pfe_input_rules[PFE_IN_COUNT] = {
     /* CCVS1 speed, mm/s: 0 .. 150 km/h, 10 m/s^2 + 1 m/s a frame */
-    [PFE_IN_SPEED] = {PFE_PGN_CCVS1, 100000U, 0, 41667, 10000U, 1000U},
+    [PFE_IN_SPEED] = {PFE_PGN_CCVS1, 100000U, 0, 41667, 10000U, 1000U, 60000U},
     /* SSI pitch as grade, ppm: +-50 %, 20 %/s + 0.5 % a frame */
-    [PFE_IN_GRADE] = {PFE_PGN_SSI, 10000U, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM, 200000U, 5000U},
-    /* VDS altitude, mm: the signal's range, 15 m/s + 10 m a frame */
-    [PFE_IN_ALTITUDE] = {PFE_PGN_VDS, 100000U, -2500000, 5531875, 15000U, 10000U},
+    [PFE_IN_GRADE] = {PFE_PGN_SSI, 10000U, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM, 200000U, 5000U, 0U},
+    /* VDS altitude, mm: the signal's range, 15 m/s + 10 m a frame (J1939-71: every 1 s) */
+    [PFE_IN_ALTITUDE] = {PFE_PGN_VDS, 1000000U, -2500000, 5531875, 15000U, 10000U, 0U},
     /* CVW gross combination weight, kg: the calibration's range */
-    [PFE_IN_MASS] = {PFE_PGN_CVW, 1000000U, (int32_t)PFE_MASS_MIN_KG, (int32_t)PFE_MASS_MAX_KG, 0U, 0U},
+    [PFE_IN_MASS] = {PFE_PGN_CVW, 1000000U, (int32_t)PFE_MASS_MIN_KG, (int32_t)PFE_MASS_MAX_KG, 0U, 0U, 0U},
     /* LFE1 engine fuel rate, nL/s: 0 .. 250 L/h */
-    [PFE_IN_ENGINE_FUEL] = {PFE_PGN_LFE1, 100000U, 0, 69444444, 0U, 0U},
+    [PFE_IN_ENGINE_FUEL] = {PFE_PGN_LFE1, 100000U, 0, 69444444, 0U, 0U, 60000U},
 };
 
 void pfe_input_init(pfe_input_t *in, pfe_input_kind_t kind, uint8_t fixed_source)
@@ -81,7 +81,7 @@ static uint32_t abs_diff(int32_t a, int32_t b)
     return (uint32_t)((d < 0) ? -d : d);
 }
 
-typedef enum { PLAUSIBLE, OUT_OF_RANGE, TOO_FAST } plausibility_t;
+typedef enum { PLAUSIBLE, OUT_OF_RANGE, TOO_FAST, TOO_EARLY } plausibility_t;
 
 /* Step 2: within range, and within rate * dt + margin of the reference. */
 static plausibility_t plausible(const pfe_input_t *in, int32_t value, uint64_t rx_us)
@@ -90,10 +90,16 @@ static plausibility_t plausible(const pfe_input_t *in, int32_t value, uint64_t r
     if (!in_range(in, value)) {
         return OUT_OF_RANGE;
     }
-    if (!in->have_ref || (r->max_rate_per_s == 0U)) {
+    if (!in->have_ref) {
         return PLAUSIBLE;
     }
     uint64_t dt_us = rx_us - in->last_us;
+    if (dt_us < r->min_interval_us) {
+        return TOO_EARLY; /* a second node with the same address, or a sender gone wild */
+    }
+    if (r->max_rate_per_s == 0U) {
+        return PLAUSIBLE;
+    }
     if (dt_us > stale_us(in)) {
         dt_us = stale_us(in);
     }
@@ -121,9 +127,9 @@ static pfe_input_verdict_t take_valid(pfe_input_t *in, int32_t value, uint64_t r
             /* Still in error, and current: confirmation starts again, from
              * this frame when only its change was too fast. */
             in->rx_us = rx_us;
-            in->have_ref = p == TOO_FAST;
+            in->have_ref = p != OUT_OF_RANGE;
             in->confirm_left = (uint8_t)PFE_INPUT_CONFIRM_FRAMES;
-            if (p == TOO_FAST) {
+            if (p != OUT_OF_RANGE) {
                 in->confirm_left = (uint8_t)(PFE_INPUT_CONFIRM_FRAMES - 1U);
             }
             in->last_value = value;
@@ -169,6 +175,13 @@ pfe_input_verdict_t pfe_input_take(pfe_input_t *in, uint8_t source, pfe_sig_stat
     }
     if (state == PFE_SIG_VALID) {
         return take_valid(in, value, rx_us);
+    }
+    /* Too soon after the last accepted value, whatever it says: not the
+     * sender's own frame (a second node with its address, or garbage). */
+    const uint32_t min_us = pfe_input_rules[in->kind].min_interval_us;
+    if (in->have_ref && ((rx_us - in->last_us) < min_us)) {
+        count_reject(in);
+        return PFE_INPUT_REJECTED;
     }
     /* The locked sender says not available, error or out of range. */
     in->state = state;

@@ -22,14 +22,22 @@
  *    (pfe_input_rules[]) gives each input its PGN, period, plausible range
  *    and largest plausible change per second (plus a fixed margin per frame
  *    for quantisation and sensor noise). A value outside the range, or that
- *    moved from the last accepted one by more than rate * dt + margin, is
- *    rejected and counted; the input keeps its last accepted value, which
- *    ages as usual. PFE_INPUT_REJECTS_TO_ERROR rejections in a row make the
- *    input ERROR (the ECU then sends its fuel outputs not available), and
- *    it stays so until PFE_INPUT_CONFIRM_FRAMES consecutive frames agree
- *    with each other (each within range and rate of the previous one). The
- *    first value after the input was unused for PFE_INPUT_STALE_PERIODS
- *    periods is taken on its range alone.
+ *    moved from the last accepted one by more than rate * dt + margin, or
+ *    that came less than the rule's minimum interval after it (0.6 of the
+ *    period of CCVS1 and LFE1: two nodes sending with one address, or a
+ *    sender gone wild, garbage between the real frames; none for SSI, whose
+ *    10 ms frames bunch on a loaded bus, and whose grade the estimator
+ *    does not filter, so one wrong sample lasts one tick), is rejected and
+ *    counted; the input keeps its last accepted value, which ages as usual,
+ *    so that a rejected frame changes nothing the estimator sees.
+ *    PFE_INPUT_REJECTS_TO_ERROR rejections in a row make the input ERROR
+ *    (the ECU then sends its fuel outputs not available), and it stays so
+ *    until PFE_INPUT_CONFIRM_FRAMES consecutive frames agree with each other
+ *    (each within range, rate and interval of the previous one). The first
+ *    value after the input was unused for PFE_INPUT_STALE_PERIODS periods is
+ *    taken on its range alone. The limit of any such check: a garbage value
+ *    that happens to fall inside the plausible change (for speed about 3 %
+ *    of random payloads) is a plausible speed, and is used.
  *
  * Why the speed limits (CCVS1, SPN 84): a truck neither brakes nor
  * accelerates faster than tyre-road friction allows, mu <= 1, so |dv/dt| <=
@@ -41,9 +49,10 @@
  * Grade (SSI pitch, SPN 3318): within the model's +-50 % and a change of at
  * most 20 %/s (a crest's vertical curve of 500 m radius at 25 m/s changes
  * the grade by 5 %/s; body pitch under hard braking by about as much) plus
- * 0.5 % per frame for sensor noise. Altitude (VDS, SPN 580): the signal's
- * range, and a climb of at most 15 m/s (40 m/s at 30 % grade would be 12 m/s)
- * plus 10 m per frame for GNSS jumps. Mass (CVW, SPN 1760): the calibration
+ * 0.5 % per frame for sensor noise. Altitude (VDS, SPN 580, every second in
+ * J1939-71): the signal's range, and a climb of at most 15 m/s (40 m/s at
+ * 30 % grade would be 12 m/s) plus 10 m per frame for GNSS jumps, and no
+ * minimum interval (a 10 Hz GNSS receiver sends faster than J1939-71 asks). Mass (CVW, SPN 1760): the calibration
  * range PFE_MASS_MIN_KG .. PFE_MASS_MAX_KG, no rate. Engine fuel rate (LFE1,
  * SPN 183): 0 to 250 L/h (a 450 kW engine at full load burns about 110 L/h),
  * no rate (a fuel cut is a step).
@@ -83,6 +92,7 @@ typedef struct {
     int32_t max;
     uint32_t max_rate_per_s;      /* largest plausible change per second; 0: not checked */
     uint32_t margin;              /* allowed on top of rate * dt, per frame */
+    uint32_t min_interval_us;     /* a frame sooner after the last accepted is rejected; 0: none */
 } pfe_input_rule_t;
 
 extern const pfe_input_rule_t pfe_input_rules[PFE_IN_COUNT];

@@ -64,7 +64,7 @@ $(FUZZ_OUT)/fuzz_replay: tests/fuzz/fuzz_replay.c $(FUZZ_HDR) hal/replay/hal_rep
 
 $(FUZZ_OUT)/fuzz_capture: tests/fuzz/fuzz_capture.c $(FUZZ_HDR) sim_host/capture.c sim_host/capture.h \
         $(FW_HDR) | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/capture.c
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/capture.c sim_host/canlog.c
 
 $(FUZZ_OUT)/fuzz_dbc: tests/fuzz/fuzz_dbc.c $(FUZZ_HDR) sim_host/dbc.c sim_host/dbc.h | $(FUZZ_DEPS)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/dbc.c -lm
@@ -94,7 +94,7 @@ fuzz-smoke: fuzz-build
 	$(call fuzz_run,$(FUZZ_SMOKE_SECONDS))
 
 $(FUZZ_OUT)/ecu_seed: tests/fuzz/ecu_seed.c sim_host/capture.c sim_host/capture.h | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(WARN) -O1 -I. -Ifirmware -Isim_host -o $@ $< sim_host/capture.c
+	$(FUZZ_CC) $(WARN) -O1 -I. -Ifirmware -Isim_host -o $@ $< sim_host/capture.c sim_host/canlog.c
 
 fuzz-seeds: $(FUZZ_OUT)/ecu_seed $(BUILD)/e2e/payload/drive.log
 	sh tests/fuzz/make_seeds.sh $(BUILD)/e2e/payload/drive.log $(FUZZ_OUT)/ecu_seed

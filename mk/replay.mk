@@ -63,10 +63,10 @@ $(HOST)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) $(REPLAY_OUT)/obj/dbc.o | $(DEPS
 
 # ---------------------------------------------------------------- host tests (ASan, UBSan)
 
-$(HOSTSAN)/test_canlog: tests/host/test_canlog.c $(CANLOG_SRC) sim_host/lateness.c $(CANLOG_HDR) \
+$(HOSTSAN)/test_canlog: tests/host/test_canlog.c $(CANLOG_SRC) sim_host/lateness.c $(CANLOG_HDR) tests/replay/log_vectors.h \
         sim_host/lateness.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Isim_host -o $@ $< $(CANLOG_SRC) sim_host/lateness.c -lcmocka
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Isim_host -o $@ $< $(CANLOG_SRC) sim_host/lateness.c -lcmocka
 
 $(HOSTSAN)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -83,10 +83,11 @@ $(REPLAY_OUT)/.deps-ok: scripts/deps.sh
 	@touch $@
 
 replay-test: $(HOSTSAN)/test_canlog $(HOSTSAN)/pfe_replay $(HOSTSAN)/pfe_decode $(REPLAY_DRIVE_LOG) \
-        $(REPLAY_OUT)/.deps-ok
+        $(REPLAY_OUT)/.deps-ok $(HOST)/pfe_ecu_replay $(HOST)/pfe_ecu
 	@echo "== host: test_canlog"; $(HOSTSAN)/test_canlog $(REPLAY_DRIVE_LOG)
 	@echo "== host: test_decode.sh"; sh tests/host/test_decode.sh $(HOSTSAN)/pfe_decode can_dbc/pfe.dbc
-	@echo "== host: test_replay.sh"; sh tests/host/test_replay.sh $(HOSTSAN)/pfe_replay $(REPLAY_DRIVE_LOG)
+	@echo "== host: test_replay.sh"; sh tests/host/test_replay.sh $(HOSTSAN)/pfe_replay $(REPLAY_DRIVE_LOG) \
+	    $(HOST)/pfe_ecu_replay $(HOST)/pfe_ecu
 
 # ---------------------------------------------------------------- on vcan (scripts/vcan_vm.sh)
 

@@ -22,6 +22,7 @@
 #   RUN_LOG       drive to replay (default: the first RUN_DRIVE_S seconds of
 #                 the bundled hilly drive, $(RUN_DIR)/hilly_run.log)
 #   RUN_DRIVE_S   length of that slice in seconds                        (120)
+#   RUN_PREVIEW_SAMPLES  its grade previews' length in 12 m samples       (150)
 #   RUN_EXPECT    expected values and tolerances (sim_host/logs/hilly_run.expect)
 #   RUN_JUNIT     JUnit XML report                    ($(RUN_DIR)/junit.xml)
 #   RUN_REPORT_FLAGS  more run_report options (e.g. --module-sa 0x90)
@@ -45,8 +46,11 @@ GNUPLOT_STAMP := $(BUILD)/.gnuplot-ok
 DRIVE_FLAGS := --vehicles 5 --position 1 --gap-m 10 --set-speed-kmh 90 \
                --speed-noise-kmh 0.05 --pitch-noise-deg 0.02 --seed 1
 
-CAPTURE_SRC := sim_host/capture.c sim_host/bus_ref.c sim_host/ref_model.c
-CAPTURE_HDR := sim_host/capture.h sim_host/bus_ref.h sim_host/ref_model.h
+CAPTURE_SRC := sim_host/capture.c sim_host/canlog.c sim_host/bus_ref.c sim_host/ref_model.c
+CAPTURE_HDR := sim_host/capture.h sim_host/canlog.h sim_host/bus_ref.h sim_host/ref_model.h
+# run_report's judge of the prediction (its header lists what it needs)
+PJ_SRC := sim_host/prediction_judge.c
+PJ_HDR := sim_host/prediction_judge.h
 
 .PHONY: run run-sim drive-logs logs test-drive-logs test-run-host test-record-vm
 
@@ -62,9 +66,9 @@ $(HOST)/pfe_record: sim_host/pfe_record.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -o $@ $<
 
-$(HOST)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOST)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(PJ_SRC) $(PJ_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
 
 # ---------------------------------------------------------------- drive logs
 
@@ -85,10 +89,18 @@ $(LOG_DIR)/%.log: $(LOGS_SRC)/%.log.gz
 logs: $(addprefix $(LOG_DIR)/,$(addsuffix .log,$(ROAD_NAMES)))
 
 # The bundled run drive: the hilly drive's first RUN_DRIVE_S seconds (its
-# log starts at 1700000000.000000).
-$(RUN_DIR)/hilly_run.log: $(LOG_DIR)/hilly.log $(lastword $(MAKEFILE_LIST))
+# log starts at 1700000000.000000), with grade previews of
+# RUN_PREVIEW_SAMPLES samples (1.8 km, about 72 s at 90 km/h) instead of the
+# committed log's 12 km, so that the predictions of its first 48 s reach
+# their horizon's end within the drive and are judged (prediction_judge.h).
+# Every other frame is the committed hilly.log.gz's, byte for byte: the
+# previews do not move the simulation.
+RUN_PREVIEW_SAMPLES ?= 150
+$(RUN_DIR)/hilly_run.log: $(HOST)/drivegen $(ROADS)/hilly.csv $(lastword $(MAKEFILE_LIST))
 	@mkdir -p $(@D)
-	awk -v end="($$((1700000000 + $(RUN_DRIVE_S))).000000)" '$$1 < end' $< > $@
+	$(HOST)/drivegen --road $(ROADS)/hilly.csv $(DRIVE_FLAGS) --preview-samples $(RUN_PREVIEW_SAMPLES) \
+	    --out $(RUN_DIR)/hilly_preview.log 2> /dev/null
+	awk -v end="($$((1700000000 + $(RUN_DRIVE_S))).000000)" '$$1 < end' $(RUN_DIR)/hilly_preview.log > $@
 
 test-drive-logs: $(HOST)/drivegen
 	@mkdir -p $(BUILD)/logs-check
@@ -151,20 +163,23 @@ $(HOSTSAN)/test_capture: tests/host/test_capture.c $(CAPTURE_SRC) $(CAPTURE_HDR)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(CAPTURE_SRC) sim_host/drive_trace.c \
 	    $(FW_SRC) -lcmocka -lm
 
-$(HOSTSAN)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(PJ_SRC) $(PJ_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
 
-$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/capture.c sim_host/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/capture.c sim_host/canlog.c sim_host/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/capture.c $(FW_SRC) -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/capture.c sim_host/canlog.c $(FW_SRC) -lm
 
 test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
-        $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP)
+        $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP) $(HOST)/drivegen $(HOST)/run_report
 	@echo "== host: test_capture"; $(HOSTSAN)/test_capture
 	@echo "== host: run_report on the firmware ECU run offline"
 	@sh tests/host/run_report_test.sh $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
-	    $(LOG_DIR)/hilly.log $(BUILD)/run-report-test
+	    $(LOG_DIR)/hilly.log $(BUILD)/run-report-test $(HOST)/run_report
+	@echo "== host: run_report's prediction judge on the firmware ECU run offline"
+	@sh tests/host/prediction_judge_test.sh $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
+	    $(HOST)/drivegen $(ROADS)/hilly.csv $(BUILD)/prediction-judge-test
 
 # The recorder in the VM, next to candump -L, on every kind of frame.
 RECORD_PAYLOAD := $(BUILD)/record-vm

@@ -11,11 +11,16 @@
 # Targets:
 #   $(HOST)/sensitivity   the command (sim_host/sensitivity.c)
 #   sensitivity           run it on the three bundled roads: tables on
-#                         stdout, $(SENS_OUT)/NAME.csv and NAME.png
+#                         stdout, $(SENS_OUT)/NAME.csv and NAME.png; then
+#                         the number of trucks swept, N = 1 .. 32 on the
+#                         hilly road (scripts/n_sweep.sh): node and object
+#                         fuel and instructions (callgrind), $(SENS_OUT)/n_sweep.csv
 #   test-sensitivity      tests/host/test_sensitivity.c (CMocka, ASan +
 #                         UBSan), then the command itself under ASan + UBSan
 #                         on the three roads (exit 0, a CSV and a PNG each)
-#                         and on a bad road file (exit 2, file and line named)
+#                         and on a bad road file (exit 2, file and line named);
+#                         the N sweep for N = 1 .. 3 (its table, CSV, and
+#                         the node model costing more per truck than the object)
 #
 # The plots need gnuplot: scripts/deps.sh installs gnuplot-nox on first use.
 
@@ -45,10 +50,14 @@ $(HOSTSAN)/test_sensitivity: tests/host/test_sensitivity.c $(SENS_SRC) $(SENS_HD
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(SENS_SRC) $(FW_SRC) -lcmocka -lm
 
-sensitivity: $(HOST)/sensitivity $(SENS_PLOT_STAMP)
-	$(HOST)/sensitivity --out $(SENS_OUT) $(SENS_ROADS)
+# The N sweep needs platoon_compare (mk/thesis.mk) and valgrind (its stamp's rule there too).
+SENS_SWEEP_DEPS := $(HOST)/platoon_compare $(BUILD)/.deps-valgrind scripts/n_sweep.sh
 
-test-sensitivity: $(HOSTSAN)/test_sensitivity $(HOSTSAN)/sensitivity $(SENS_PLOT_STAMP)
+sensitivity: $(HOST)/sensitivity $(SENS_PLOT_STAMP) $(SENS_SWEEP_DEPS)
+	$(HOST)/sensitivity --out $(SENS_OUT) $(SENS_ROADS)
+	sh scripts/n_sweep.sh $(HOST)/platoon_compare $(ROADS)/hilly.csv $(SENS_OUT) 1 32
+
+test-sensitivity: $(HOSTSAN)/test_sensitivity $(HOSTSAN)/sensitivity $(SENS_PLOT_STAMP) $(SENS_SWEEP_DEPS)
 	@echo "== host: test_sensitivity"; $(HOSTSAN)/test_sensitivity $(ROADS)
 	@echo "== host: sensitivity on $(ROAD_NAMES), and on a bad road"
 	@rm -rf $(SENS_CHECK) && mkdir -p $(SENS_CHECK)
@@ -63,3 +72,9 @@ test-sensitivity: $(HOSTSAN)/test_sensitivity $(HOSTSAN)/sensitivity $(SENS_PLOT
 	    -l "sensitivity: $(SENS_CHECK)/bad.csv:3: bad number '1.2.3' in column 2 (grade_percent)" -- \
 	    $(HOSTSAN)/sensitivity --out $(SENS_CHECK) $(SENS_CHECK)/bad.csv
 	@echo "sensitivity: three roads tabulated and plotted; a bad road refused with its line"
+	@sh scripts/n_sweep.sh $(HOST)/platoon_compare $(ROADS)/hilly.csv $(SENS_CHECK) 1 3 > $(SENS_CHECK)/sweep.txt
+	@awk -F, 'NR > 1 { n++; if (!($$8 >= 0.9)) bad = bad " N=" $$1 " ratio/N " $$8 } \
+	    END { if (n != 3 || bad != "") { print "n_sweep:" bad " (" n " rows)"; exit 1 } }' $(SENS_CHECK)/n_sweep.csv
+	@sh scripts/expect_exit.sh 2 $(SENS_CHECK)/sweep-bad.txt -q -- \
+	    sh scripts/n_sweep.sh $(HOST)/platoon_compare $(SENS_CHECK)/missing.csv $(SENS_CHECK)
+	@echo "n_sweep: N = 1 .. 3 on the hilly road, the node model at least 0.9 N times the object's instructions; a missing road refused"

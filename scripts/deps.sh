@@ -18,6 +18,9 @@ set -eu
 # Host compiler and make for the host build and host tests; the Cortex-M4
 # cross toolchain and its C library; CMocka for host tests; QEMU to run target
 # images; dpkg-dev for `apt-get source` (scripts/cmocka_src.sh).
+# Makefiles pass extra packages for their own targets: cppcheck, python3,
+# gcovr (mk/hardening.mk); openocd, stlink-tools for the STM32 bench
+# guide's commands (mk/stm32.mk, STM32_BENCH_PACKAGES).
 BASE_PACKAGES="gcc make gcc-arm-none-eabi binutils-arm-none-eabi \
 libnewlib-arm-none-eabi libcmocka-dev qemu-system-arm dpkg-dev coreutils"
 

@@ -24,8 +24,13 @@ inline assembly such as hal_mps2_default_handler's branch to
 report_exception). Indirect calls: every one in the .ci must match an entry
 of the --indirect file, which lists its possible targets; every register
 branch (blx rN, bx rN other than lr) in the disassembly must belong to a
-function with such a call; every function whose address is stored in the
-image (outside the vector table) must be listed as a target. Anything else,
+function with such a call (a switch's table branch, adr rX then ldr pc,
+[rX, rY, lsl #2] with the table right after it and every entry inside the
+same function, is a jump within the function, not a call); every function
+whose address is stored in the image (outside the vector table) must be
+listed as a target. A target "!FUNC" says the call's pointer is set only by
+FUNC: the image must not link FUNC (then the pointer stays NULL and the call
+is never made). Anything else,
 and any cycle (recursion), is refused: the bound would not be one.
 
 Exceptions: the vector table is read from the image. The thread starts at
@@ -175,6 +180,8 @@ def disassemble(elf, funcs):
     pool_words = []
     cur = None
     ri = 0
+    prev = None      # (function, address, op, operands) of the last instruction
+    table = None     # the switch table being read: function, its bounds, entries
     for line in run([OBJDUMP, "-d", "--no-show-raw-insn", elf]).split("\n"):
         m = INSN.match(line)
         if not m:
@@ -187,11 +194,25 @@ def disassemble(elf, funcs):
         cur = ranges[ri][2] if (ri < len(ranges) and ranges[ri][0] <= addr) else None
         if op == ".word":
             try:
-                pool_words.append(int(rest.split()[0], 16))
+                w = int(rest.split()[0], 16)
             except (ValueError, IndexError):
-                pass
+                continue
+            pool_words.append(w)
+            if table is not None and cur == table["func"]:
+                # A case of the switch: a Thumb address inside the function.
+                if (w & 1) and table["lo"] <= (w & ~1) < table["hi"]:
+                    table["entries"] += 1
+                else:
+                    info[cur]["regbranch"].append("switch table entry 0x%x at 0x%x leaves %s"
+                                                  % (w, addr, cur))
             continue
+        if table is not None:
+            if table["entries"] == 0:
+                info[table["func"]]["regbranch"].append("switch table without entries at 0x%x"
+                                                        % table["at"])
+            table = None
         if cur is None:
+            prev = None
             continue
         fi = info[cur]
         base = op.split(".")[0]
@@ -230,7 +251,20 @@ def disassemble(elf, funcs):
         elif base == "mov" and re.match(r"pc,", rest):
             fi["regbranch"].append("%s %s at 0x%x" % (op, rest, addr))
         elif base == "ldr" and re.match(r"pc,", rest) and not re.match(r"pc,\s*\[sp\]", rest):
-            fi["regbranch"].append("%s %s at 0x%x" % (op, rest, addr))
+            # GCC's switch: adr rX, TABLE; ldr.w pc, [rX, rY, lsl #2]; TABLE
+            # right after, every entry an address in this function: a jump
+            # within it, not a call.
+            jt = re.match(r"pc,\s*\[(r\d+),\s*r\d+,\s*lsl\s*#2\]$", rest)
+            adr = None
+            if jt and prev is not None and prev[0] == cur and prev[2].split(".")[0] == "add":
+                adr = re.match(r"(r\d+),\s*pc,\s*#(\d+)$", prev[3])
+            if (adr and adr.group(1) == jt.group(1) and
+                    ((prev[1] + 4) & ~3) + int(adr.group(2)) == addr + 4):
+                lo, size = funcs[cur]
+                table = {"func": cur, "lo": lo, "hi": lo + size, "entries": 0, "at": addr}
+            else:
+                fi["regbranch"].append("%s %s at 0x%x" % (op, rest, addr))
+        prev = (cur, addr, op, rest)
     return info, pool_words
 
 
@@ -370,6 +404,12 @@ def main():
         for t in entry["targets"]:
             if t == "@init_array":
                 calls[src].update(init_targets)
+            elif t.startswith("!"):
+                # "!FUNC": the pointer is set only by FUNC; an image without
+                # FUNC leaves it NULL and never makes this call.
+                if t[1:] in funcs:
+                    refusals.append("%s: %s sets the pointer of %s, and the image links it: list "
+                                    "the targets instead" % (entry["where"], t[1:], label))
             elif t in funcs:
                 calls[src].add(t)
             else:
@@ -387,7 +427,7 @@ def main():
     vectors = words(section_bytes(args.elf, ".isr_vector"))
     listed = set(init_targets)
     for e in indirect:
-        listed.update(t for t in e["targets"] if t != "@init_array")
+        listed.update(t for t in e["targets"] if (t != "@init_array") and not t.startswith("!"))
     data_words = []
     for sec in (".rodata", ".data"):
         data_words += words(section_bytes(args.elf, sec))

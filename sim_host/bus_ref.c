@@ -19,6 +19,14 @@ static int configure(bus_ref_t *r, unsigned n, unsigned position, uint32_t gap_m
     pfe_platoon_config_t pc;
     pfe_platoon_config_uniform(&pc, n, gap_mm, &pfe_default_vehicle, &pfe_default_env,
                                &pfe_default_drag);
+    for (unsigned k = 0U; k < pc.n_vehicles; k++) {
+        if (r->vehicle_at[k] != NULL) {
+            pc.vehicle[k] = r->vehicle_at[k];
+        }
+    }
+    if ((position < pc.n_vehicles) && (r->own_vehicle != NULL)) {
+        pc.vehicle[position] = r->own_vehicle;
+    }
     ref_platoon_t trial;
     if ((pc.n_vehicles != n) || (position >= n) || (ref_platoon_init(&trial, &pc) != 0)) {
         return -1;
@@ -37,12 +45,44 @@ static int configure(bus_ref_t *r, unsigned n, unsigned position, uint32_t gap_m
 
 int bus_ref_init(bus_ref_t *r, unsigned n_vehicles, unsigned position, uint32_t gap_mm)
 {
+    return bus_ref_init_vehicles(r, n_vehicles, position, gap_mm, NULL, NULL);
+}
+
+int bus_ref_init_vehicles(bus_ref_t *r, unsigned n_vehicles, unsigned position, uint32_t gap_mm,
+                          const pfe_vehicle_calib_t *own_vehicle,
+                          const pfe_vehicle_calib_t *const vehicle_at[PFE_MAX_VEHICLES])
+{
     memset(r, 0, sizeof *r);
+    r->own_vehicle = own_vehicle;
+    for (unsigned k = 0U; (vehicle_at != NULL) && (k < PFE_MAX_VEHICLES); k++) {
+        r->vehicle_at[k] = vehicle_at[k];
+    }
     if (configure(r, n_vehicles, position, gap_mm) != 0) {
         return -1;
     }
     r->degraded = true;
+    r->grade_state = (int)PFE_SIG_NOT_AVAILABLE;
     return 0;
+}
+
+/* Whether a frame from sa (valid value, or error) at t_us is the input's,
+ * by the module's rule (firmware/pfe_input.h); stale_us: three periods. */
+static bool arb_take(bus_ref_arb_t *a, uint8_t sa, bool valid, bool error, uint64_t t_us,
+                     uint64_t stale_us)
+{
+    if (a->locked && (sa != a->sa)) {
+        if (!valid || (!a->error && ((t_us - a->valid_us) <= stale_us))) {
+            return false; /* another sender: only a valid value, once the locked one is gone */
+        }
+        a->locked = false;
+    }
+    if (valid) {
+        a->locked = true;
+        a->sa = sa;
+        a->valid_us = t_us;
+    }
+    a->error = a->locked && error;
+    return true;
 }
 
 static void tick(bus_ref_t *r, uint64_t now_us)
@@ -54,7 +94,12 @@ static void tick(bus_ref_t *r, uint64_t now_us)
     if (!r->grade_seen || ((now_us - r->grade_rx_us) > GRADE_STALE_US)) {
         r->grade_seen = false;
         r->grade_ok = false;
+        r->grade_state = (int)PFE_SIG_NOT_AVAILABLE;
     }
+    /* No slope sensor value: the road assumed flat, unless the sensor is
+     * in error or out of range (a fault, not an absent sensor). */
+    r->grade_flat = !r->grade_ok && (r->grade_state != (int)PFE_SIG_ERROR) &&
+                    (r->grade_state != (int)PFE_SIG_OUT_OF_RANGE);
     if (!r->config_seen || ((now_us - r->config_rx_us) > CONFIG_STALE_US)) {
         r->config_seen = false;
         r->config_ok = false;
@@ -62,7 +107,8 @@ static void tick(bus_ref_t *r, uint64_t now_us)
     if (!r->config_ok) {
         r->degraded = true;
     }
-    ref_estimator_step(&r->est, r->speed_m_s, r->speed_ok, r->speed_fresh, r->grade, r->grade_ok);
+    ref_estimator_step(&r->est, r->speed_m_s, r->speed_ok, r->speed_fresh,
+                       r->grade_ok ? r->grade : 0.0, r->grade_ok || r->grade_flat);
     r->speed_fresh = false;
     const unsigned h = (unsigned)(r->ticks % BUS_REF_HISTORY);
     r->own_rate_hist[h] = r->est.pos_fuel_rate[r->position];
@@ -86,6 +132,16 @@ uint64_t bus_ref_tick(bus_ref_t *r)
     tick(r, t);
     r->next_tick_us += BUS_REF_TICK_US;
     return t;
+}
+
+uint64_t bus_ref_skip_to(bus_ref_t *r, uint64_t t_us)
+{
+    if (!r->started || (t_us <= r->next_tick_us)) {
+        return 0U;
+    }
+    const uint64_t n = (t_us - r->next_tick_us) / BUS_REF_TICK_US;
+    r->next_tick_us += n * BUS_REF_TICK_US;
+    return n;
 }
 
 void bus_ref_advance(bus_ref_t *r, uint64_t t_us)
@@ -129,7 +185,9 @@ void bus_ref_input(bus_ref_t *r, const pfe_can_frame_t *f, uint64_t t_us)
     const uint32_t pgn = pfe_j1939_pgn(f->id);
     if (pgn == PFE_PGN_CCVS1) {
         pfe_msg_ccvs1_t m;
-        if (pfe_codec_decode_ccvs1(f, &m) < 0) {
+        if ((pfe_codec_decode_ccvs1(f, &m) < 0) ||
+            !arb_take(&r->speed_arb, pfe_j1939_source(f->id), m.speed_mm_s.state == PFE_SIG_VALID,
+                      m.speed_mm_s.state == PFE_SIG_ERROR, t_us, SPEED_STALE_US)) {
             return;
         }
         r->speed_ok = m.speed_mm_s.state == PFE_SIG_VALID;
@@ -139,9 +197,12 @@ void bus_ref_input(bus_ref_t *r, const pfe_can_frame_t *f, uint64_t t_us)
         r->speed_rx_us = t_us;
     } else if (pgn == PFE_PGN_SSI) {
         pfe_msg_ssi_t m;
-        if (pfe_codec_decode_ssi(f, &m) < 0) {
+        if ((pfe_codec_decode_ssi(f, &m) < 0) ||
+            !arb_take(&r->grade_arb, pfe_j1939_source(f->id), m.pitch_udeg.state == PFE_SIG_VALID,
+                      m.pitch_udeg.state == PFE_SIG_ERROR, t_us, GRADE_STALE_US)) {
             return;
         }
+        r->grade_state = (int)m.pitch_udeg.state;
         r->grade_ok = m.pitch_udeg.state == PFE_SIG_VALID;
         r->grade = tan(m.pitch_udeg.value / 1e6 * PI / 180.0);
         r->grade_seen = true;

@@ -8,6 +8,16 @@
  *   - CCVS1 speed and SSI pitch (grade = tan(pitch)) as last received, not
  *     available once older than three periods (300 ms, 30 ms) or when the
  *     frame says not available or error;
+ *   - each of the two from one sender, as the module arbitrates them
+ *     (firmware/pfe_input.h): the first sender whose value is valid, left
+ *     for another only once it has sent no valid value for three periods
+ *     or has sent error; not available or error from any other sender is
+ *     ignored (a cab controller's "not available" speed beside the
+ *     engine's). The module's plausibility checks are not modelled;
+ *   - without a valid SSI pitch the road is assumed flat (grade 0), unless
+ *     the slope sensor in use sends error or out of range (then no
+ *     estimate), as the module does when it has no altitude either (the
+ *     module's grade from VDS altitude is not modelled);
  *   - PFE_PlatoonConfig: the platoon (N trucks, own position, gap: Gap, else
  *     TimeGap x SetSpeed) changes when a valid frame differs from the one in
  *     use, or is the first after none or a stale one (3 s): the estimator
@@ -39,7 +49,18 @@
 #define BUS_REF_HISTORY 6U
 #define BUS_REF_TICK_US 10000U
 
+/* One input's sender arbitration. */
 typedef struct {
+    bool locked;
+    uint8_t sa;                     /* sender in use when locked */
+    bool error;                     /* it last sent error */
+    uint64_t valid_us;              /* its last valid value */
+} bus_ref_arb_t;
+
+typedef struct {
+    /* the trucks' calibrations (bus_ref_init_vehicles(); NULL: default) */
+    const pfe_vehicle_calib_t *own_vehicle;
+    const pfe_vehicle_calib_t *vehicle_at[PFE_MAX_VEHICLES];
     /* platoon in use */
     unsigned n_vehicles, position;
     uint32_t gap_mm;
@@ -48,6 +69,9 @@ typedef struct {
     ref_platoon_t pl;
     ref_estimator_t est;
     /* inputs */
+    bus_ref_arb_t speed_arb, grade_arb;
+    int grade_state;                /* pfe_sig_state_t of the grade in use */
+    bool grade_flat;                /* the last tick assumed a flat road */
     double speed_m_s, grade;
     bool speed_ok, speed_fresh, grade_ok, config_ok;
     bool speed_seen, grade_seen, config_seen;
@@ -64,6 +88,15 @@ typedef struct {
  * gap_mm apart. Returns 0, or -1 when that platoon is invalid. */
 int bus_ref_init(bus_ref_t *r, unsigned n_vehicles, unsigned position, uint32_t gap_mm);
 
+/* The same with the trucks' calibrations, as the module's
+ * pfe_ecu_config_t own_vehicle and vehicle_at[] (sim_host/truck_cal.h): the
+ * own truck's at its position, vehicle_at[k] (NULL: pfe_default_vehicle) at
+ * position k; own_vehicle NULL is the default. The calibrations must
+ * outlive *r. */
+int bus_ref_init_vehicles(bus_ref_t *r, unsigned n_vehicles, unsigned position, uint32_t gap_mm,
+                          const pfe_vehicle_calib_t *own_vehicle,
+                          const pfe_vehicle_calib_t *const vehicle_at[PFE_MAX_VEHICLES]);
+
 /* Steps every tick due at or before t_us. The first call starts the clock
  * (first tick at t_us + 10 ms). */
 void bus_ref_advance(bus_ref_t *r, uint64_t t_us);
@@ -74,6 +107,13 @@ void bus_ref_advance(bus_ref_t *r, uint64_t t_us);
  * then steps it and returns its time. */
 bool bus_ref_due(bus_ref_t *r, uint64_t t_us);
 uint64_t bus_ref_tick(bus_ref_t *r);
+
+/* Crosses a silence in one jump: the next tick moves on by a whole number
+ * of ticks to the last one at or before t_us, none of them stepped (the
+ * inputs are stale by then, as the module's are when pfe_ecu_replay skips
+ * the same silence, hal/replay/hal_replay_ecu.h). Returns the ticks
+ * skipped (0 before the clock started or when t_us is not ahead). */
+uint64_t bus_ref_skip_to(bus_ref_t *r, uint64_t t_us);
 
 /* Takes one input frame received at t_us; call bus_ref_advance(r, t_us)
  * first. */

@@ -180,6 +180,11 @@ canlog_format_t canlog_format(const canlog_reader_t *r)
     return r->format;
 }
 
+void canlog_allow_backwards(canlog_reader_t *r, bool allow)
+{
+    r->backwards_ok = allow;
+}
+
 canlog_time_base_t canlog_time_base(const canlog_reader_t *r)
 {
     return r->time_base;
@@ -271,6 +276,9 @@ static int open_common(canlog_reader_t *r, const char *name, canlog_format_t for
     r->comments = 0U;
     memset(r->errors, 0, sizeof r->errors);
     r->error_lines = 0U;
+    r->dropped = 0U;
+    r->backwards = 0U;
+    r->backwards_ok = false;
     r->msg[0] = '\0';
     for (size_t i = 0U; i < (size_t)CANLOG_REASON_COUNT; i++) {
         r->first_msg[i][0] = '\0';
@@ -616,6 +624,12 @@ static int accept_time(canlog_reader_t *r, canlog_time_base_t tb, uint64_t t, ui
         return fail(r, CANLOG_E_BAD_TIME, "timestamp of another kind (%s) than earlier lines (%s)",
                     canlog_time_base_text(tb), canlog_time_base_text(r->time_base));
     }
+    if (r->have_time && (t < r->last_time_us) && r->backwards_ok) {
+        r->time_base = tb;
+        r->backwards++;
+        *out = t;
+        return 0;
+    }
     if (r->have_time && (t < r->last_time_us)) {
         const bool printed_z = (r->format == CANLOG_FMT_PRINTED) && (tb == CANLOG_TB_START);
         return fail(r, CANLOG_E_BACKWARDS, "%llu.%06llu s is before the previous frame's %llu.%06llu s%s",
@@ -711,7 +725,7 @@ static int parse_compact_frame(canlog_reader_t *r, const char **pp, canlog_frame
             p++;
             continue;
         }
-        if (is_end(c)) {
+        if (is_end(c) || ((c == '_') && !f->fd)) {
             break;
         }
         const int hi = hex_digit(c);
@@ -730,6 +744,15 @@ static int parse_compact_frame(canlog_reader_t *r, const char **pp, canlog_frame
             f->data[n] = (uint8_t)((hi << 4) | lo);
         }
         n++;
+        p += 2;
+    }
+    if ((*p == '_') && !f->fd) {
+        /* candump -8: the raw DLC 9..F of an 8-byte classic frame */
+        const int d = hex_digit(p[1]);
+        if ((n != CANLOG_MAX_DLEN) || (d < 9) || !is_end(p[2])) {
+            return fail(r, CANLOG_E_DLC, "a raw DLC after '_' needs 8 data bytes and a DLC of 9 to F");
+        }
+        f->len8_dlc = (uint8_t)d;
         p += 2;
     }
     rc = check_len(r, f->fd, n);
@@ -763,12 +786,34 @@ static bool is_comment(const char *p)
     return (*p == '\0') || (*p == '#') || ((p[0] == '/') && (p[1] == '/'));
 }
 
+/* candump's "DROPCOUNT: dropped N CAN frame(s) on 'IF' socket (total drops T)":
+ * true, and N added to r->dropped, when P starts with "DROPCOUNT:". */
+static bool note_dropcount(canlog_reader_t *r, const char *p)
+{
+    if (!starts_with(p, "DROPCOUNT:")) {
+        return false;
+    }
+    const char *q = skip_blanks(p + 10);
+    if (starts_with(q, "dropped")) {
+        q = skip_blanks(q + 7);
+        uint64_t n = 0U;
+        int digits = 0;
+        while (is_digit(*q) && (digits < 19)) {
+            n = (n * 10U) + (uint64_t)(*q - '0');
+            q++;
+            digits++;
+        }
+        r->dropped += n;
+    }
+    return true;
+}
+
 static int parse_log_line(canlog_reader_t *r, const char *line, canlog_frame_t *f)
 {
     const char *p = skip_blanks(line);
     char cbuf[16];
     if (*p != '(') {
-        if (is_comment(p) || starts_with(p, "DROPCOUNT:")) {
+        if (is_comment(p) || note_dropcount(r, p)) {
             return 1;
         }
         return fail(r, CANLOG_E_SYNTAX, "%s: a candump log line starts with '('",
@@ -833,7 +878,7 @@ static int parse_printed_line(canlog_reader_t *r, const char *line, canlog_frame
         return 1; /* -e: the description lines under an error frame */
     }
     const char *p = skip_blanks(line);
-    if (is_comment(p)) {
+    if (is_comment(p) || note_dropcount(r, p)) {
         return 1;
     }
     canlog_time_base_t tb = CANLOG_TB_NONE;
@@ -1531,7 +1576,17 @@ int canlog_next(canlog_reader_t *r, canlog_frame_t *out)
                 }
                 return rc;
             }
+            if ((fmt == (int)CANLOG_FMT_AUTO) && looks_binary(line, len)) {
+                /* a NUL first looks like a blank line: it is not text */
+                r->saw_content = true;
+                rc = fail(r, CANLOG_E_BINARY, "control characters or NUL bytes in the line");
+                if (r->mode == CANLOG_ON_ERROR_SKIP) {
+                    continue;
+                }
+                return rc;
+            }
             if (fmt == (int)CANLOG_FMT_AUTO) {
+                (void)note_dropcount(r, skip_blanks(line));
                 r->comments++;
                 continue;
             }
@@ -1539,6 +1594,7 @@ int canlog_next(canlog_reader_t *r, canlog_frame_t *out)
         }
         /* parsed into the reader's own frame: *out changes only on success */
         canlog_frame_t *f = &r->scratch;
+        f->len8_dlc = 0U;
         switch (r->format) {
         case CANLOG_FMT_LOG:
             rc = parse_log_line(r, line, f);
@@ -1567,6 +1623,14 @@ int canlog_next(canlog_reader_t *r, canlog_frame_t *out)
             r->frames++;
             memcpy(out, f, sizeof *out);
             return 1;
+        }
+        if ((rc > 0) && looks_binary(line, len)) {
+            r->saw_content = true;
+            rc = fail(r, CANLOG_E_BINARY, "control characters or NUL bytes in the line");
+            if (r->mode == CANLOG_ON_ERROR_SKIP) {
+                continue;
+            }
+            return rc;
         }
         if (rc > 0) {
             r->comments++;
@@ -1683,6 +1747,11 @@ size_t canlog_write_log(char *buf, size_t size, const canlog_frame_t *frame, con
         for (unsigned i = 0U; i < len; i++) {
             *p++ = hexdig[frame->data[i] >> 4];
             *p++ = hexdig[frame->data[i] & 0xFU];
+        }
+        if (!frame->fd && (len == CANLOG_MAX_DLEN) && (frame->len8_dlc >= 9U) &&
+            (frame->len8_dlc <= 15U)) {
+            *p++ = '_';
+            *p++ = hexdig[frame->len8_dlc];
         }
     }
     *p++ = '\n';

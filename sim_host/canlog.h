@@ -10,12 +10,14 @@
  *                       (29-bit, or an error frame when CAN_ERR_FLAG is set);
  *                       data as hex pairs, '.' allowed between bytes;
  *                       remote frames "123#R" or "123#R4" (requested length);
+ *                       "..#<8 bytes>_C": the raw DLC (9..F) of candump -8;
  *                       CAN FD "123##1" + data (the digit after ## is the FD
  *                       flags nibble: 1 BRS, 2 ESI). A trailing " R" or " T"
  *                       (candump -x direction) is accepted. Blank lines,
  *                       lines starting with '#' or "//" and candump's
  *                       "DROPCOUNT:" lines are skipped and counted as
- *                       comments; any other line that does not start with
+ *                       comments (a DROPCOUNT's N is added to dropped, in
+ *                       the printed formats too); any other line that does not start with
  *                       '(' is an error (canplayer silently ignores them).
  *   CANLOG_FMT_PRINTED  candump's printed output, default view (no -c
  *                       colours, no -b binary, no -8 DLC), with or without -t:
@@ -134,6 +136,7 @@ typedef struct {
     bool fd;            /* a CAN FD frame */
     char dir;           /* 'R', 'T' when the log says so, else 0 */
     uint8_t channel;    /* ASC channel (1..255); 0 in the other formats */
+    uint8_t len8_dlc;   /* candump log "#..._L": raw DLC 9..15 of an 8-byte classic frame, else 0 */
     char iface[CANLOG_IFNAME_MAX]; /* interface name as logged ("can0" for ASC channel 1) */
     uint8_t data[CANLOG_FD_MAX_DLEN]; /* len bytes; the rest is left as it was */
 } canlog_frame_t;
@@ -207,6 +210,9 @@ typedef struct {
     uint64_t comments;         /* blank, comment and ignored event lines */
     uint64_t errors[CANLOG_REASON_COUNT]; /* bad lines by reason */
     uint64_t error_lines;      /* sum of errors[] */
+    uint64_t dropped;          /* sum of the N of candump's "DROPCOUNT: dropped N ..." lines */
+    uint64_t backwards;        /* frames returned although earlier (canlog_allow_backwards) */
+    bool backwards_ok;         /* canlog_allow_backwards() */
     /* messages */
     char msg[CANLOG_MSG_MAX];  /* the last error */
     char first_msg[CANLOG_REASON_COUNT][CANLOG_MSG_MAX]; /* first error of each reason */
@@ -240,6 +246,14 @@ int canlog_next(canlog_reader_t *r, canlog_frame_t *out);
  * stay. Returns 0, or -CANLOG_E_IO when the file cannot seek (a pipe).
  */
 int canlog_rewind(canlog_reader_t *r);
+
+/*
+ * Lets frames earlier than the one before through instead of failing them
+ * with CANLOG_E_BACKWARDS: each is returned with its own time and counted in
+ * r->backwards (for a replay that delivers it at once, as hal/replay does).
+ * Call after opening; kept by canlog_rewind().
+ */
+void canlog_allow_backwards(canlog_reader_t *r, bool allow);
 
 /* The format read (after detection: never CANLOG_FMT_AUTO once a frame came). */
 canlog_format_t canlog_format(const canlog_reader_t *r);

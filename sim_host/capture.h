@@ -1,34 +1,26 @@
 /*
- * capture.h - a recorded CAN bus: candump log files.
+ * capture.h - a recorded CAN bus, for the judge (run_report) and the
+ * checkers (ecu_check, ecu_offline).
  *
- * The format candump -L and sim_host/pfe_record write, one frame per line:
+ * A capture is any log sim_host/canlog.h reads, through that one parser:
+ * candump -L (and pfe_record's output), candump's printed output with
+ * timestamps (-t a, z, A; -t d reads as -t z, see canlog.h) and Vector
+ * ASC, the form detected from the first lines. For example
  *
  *     (1700000000.010000) vcan0 0CF01300#C67C007DFFFFFCFF
- *     (SECONDS.FRACTION) IFACE FRAME [R|T]
+ *     (000.011063)  can0  18FEF100   [8]  FF 12 34 56 78 9A BC DE
  *
- * - SECONDS: 1 to 10 digits; FRACTION: 6 digits (microseconds) or 9
- *   (nanoseconds, truncated to microseconds here).
- * - IFACE: 1 to 15 characters, no blanks; any number of spaces before it
- *   (candump right-aligns names to the longest one it was given).
- * - FRAME, as can-utils' lib.c prints it:
- *     III#DD..          classic frame, 11-bit id (3 hex digits), 0 to 8 bytes
- *     IIIIIIII#DD..     classic frame, 29-bit id (8 hex digits); an id with
- *                       bit 29 (0x20000000) set is an error frame, whose
- *                       low 29 bits are the error class
- *     ...#DD.._L        8 bytes with a raw DLC L of 9 to F (len8_dlc)
- *     ...#R, ...#RL     remote frame, DLC L 0 to 8 (omitted when 0)
- *     ...##FDD..        CAN FD: F the flags nibble, 0 to 64 bytes
- *   Data bytes are pairs of hex digits, either case, optionally split by '.'.
- * - An optional last field R or T (candump -x: received, transmitted).
- * - Blank lines and lines starting with '#' are skipped; so are candump's
- *   "DROPCOUNT: dropped N CAN frame(s) on 'IF' socket (total drops T)"
- *   lines, whose N is added up (capture_t.dropped).
- * - LF or CRLF line ends; a line holds at most CAPTURE_MAX_LINE characters.
+ * Every line is read as canlog.h describes, blank and comment lines
+ * skipped; candump's "DROPCOUNT: dropped N ..." lines add N to
+ * capture_t.dropped. Classic frames with 29-bit ids (J1939) become records;
+ * 11-bit, remote, CAN FD and error frames are counted and skipped. A log
+ * that starts mid-drive, with no address claims and any number of PGNs
+ * nobody here reads, is a capture like any other.
  *
- * A bad line, a NUL or control character (a binary file), or a timestamp
- * earlier than the line before it is an error naming the file, the line and
- * the reason: "FILE:LINE: reason". A file without a single frame is an error
- * too. Nothing after the first error is read.
+ * The first bad line ends the load with an error naming the file, the
+ * line and the reason (canlog's "FILE:LINE: reason: detail"), so do a
+ * timestamp earlier than the line before, printed output without
+ * timestamps (nothing to judge in time) and a file without a single frame.
  */
 #ifndef CAPTURE_H
 #define CAPTURE_H
@@ -39,7 +31,7 @@
 
 #include "../firmware/pfe_can.h"
 
-#define CAPTURE_MAX_LINE 1023U
+#define CAPTURE_MAX_LINE 4095U          /* as CANLOG_LINE_MAX */
 #define CAPTURE_IFNAME_MAX 15U
 #define CAPTURE_FD_MAX_LEN 64U
 #define CAPTURE_ERR_FLAG 0x20000000UL    /* as SocketCAN's CAN_ERR_FLAG */
@@ -69,10 +61,12 @@ typedef struct {
 #define CAPTURE_LINE_DROPS 2       /* a DROPCOUNT line: *dropped holds its N */
 
 /*
- * Parses one line (without its line end; a trailing CR is allowed). Returns
- * CAPTURE_LINE_*, or -1 with the reason in why (NUL-terminated, truncated to
- * why_len - 1). *out is written only for CAPTURE_LINE_FRAME, *dropped only
- * for CAPTURE_LINE_DROPS. No state; reentrant; O(length).
+ * Parses one candump -L line (without its line end; a trailing CR is
+ * allowed) through canlog. Returns CAPTURE_LINE_*, or -1 with canlog's
+ * "reason: detail" in why (NUL-terminated, truncated to why_len - 1). *out
+ * is written only for CAPTURE_LINE_FRAME, *dropped (may be NULL) only for
+ * CAPTURE_LINE_DROPS. No state; reentrant; O(length) plus a reader of
+ * about 70 KiB taken from the heap for the call.
  */
 int capture_parse_line(const char *line, capture_line_t *out, unsigned long *dropped, char *why,
                        size_t why_len);
@@ -98,9 +92,10 @@ typedef struct {
 
 /*
  * Reads the log at path. Returns 0 with *cap filled (release with
- * capture_free()), or -1 with *cap empty and "PATH:LINE: reason" or
+ * capture_free()), or -1 with *cap empty and "PATH:LINE: reason: detail" or
  * "PATH: reason" in err (truncated to err_len - 1; err may be NULL when
- * err_len is 0). Memory: 32 bytes or so per J1939 frame.
+ * err_len is 0). Memory: 32 bytes or so per J1939 frame, and 70 KiB while
+ * reading.
  */
 int capture_load(const char *path, capture_t *cap, char *err, size_t err_len);
 

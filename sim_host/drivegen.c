@@ -7,10 +7,12 @@
  *            [--no-config] [--no-preview] [--preview-period-s S]
  *            [--preview-samples N] [--preview-spacing-m M]
  *            [--iface IF] [--source SA] [--config-source SA] [--preview-source SA]
- *            [--out LOG]
+ *            [--out LOG] [--calib FILE]
  *
- * The platoon (the double-precision reference object model, pfe default
- * calibration, N trucks D metres apart, default 1 truck, 10 m) drives the
+ * The platoon (the double-precision reference object model, N trucks D
+ * metres apart; each truck's calibration from FILE, sim_host/truck_cal.h:
+ * the own truck's at position P, a [position k] section's at k, else the
+ * default calibration, default 1 truck, 10 m) drives the
  * road at its set speed under cruise control. On the bus, every frame
  * encoded with the firmware's codec (can_dbc/pfe.dbc):
  *   - CCVS1 every 100 ms: the speed (SPN 84, 1/256 km/h), from source SA;
@@ -51,6 +53,7 @@
 #include "../firmware/pfe_platoon.h"
 #include "drive_trace.h"
 #include "road_csv.h"
+#include "truck_cal.h"
 
 #define MAX_SEGMENTS 64
 #define SEGMENT_SPACING_MM 10000U
@@ -101,7 +104,7 @@ static void usage(void)
             "                [--no-config] [--no-preview] [--preview-period-s S]\n"
             "                [--preview-samples N] [--preview-spacing-m M]\n"
             "                [--iface IF] [--source SA] [--config-source SA] [--preview-source SA]\n"
-            "                [--out LOG]\n");
+            "                [--out LOG] [--calib FILE]\n");
 }
 
 /* 0, or 2 after a message. */
@@ -387,11 +390,17 @@ static int write_drive(const options_t *o, const road_ppm_t *road, const drive_t
 int main(int argc, char **argv)
 {
     static options_t o;
+    static truck_cal_t cal;
+    bool have_cal = false;
+    char err[512];
+    if (truck_cal_take_arg(&argc, argv, &cal, &have_cal, err, sizeof err) != 0) {
+        fprintf(stderr, "drivegen: %s\n", err);
+        return 2;
+    }
     const int prc = parse_args(argc, argv, &o);
     if (prc != 0) {
         return prc;
     }
-    char err[512];
     road_ppm_t road = {NULL, 0U, 0U};
     if (o.road_path != NULL) {
         if (road_ppm_load(o.road_path, &road, err, sizeof err) != 0) {
@@ -405,6 +414,9 @@ int main(int argc, char **argv)
     pfe_platoon_config_t cfg;
     pfe_platoon_config_uniform(&cfg, (uint32_t)o.vehicles, gap_mm_of(&o),
                                &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag);
+    for (uint32_t k = 0U; have_cal && (k < cfg.n_vehicles); k++) {
+        cfg.vehicle[k] = truck_cal_vehicle(&cal, k, (uint32_t)o.position);
+    }
     drive_trace_t drive;
     if (drive_trace_make(road.grade_ppm, road.n_samples, road.spacing_mm, &cfg,
                          (int32_t)lround(o.set_kmh / 3.6 * 1000.0), &drive, err, sizeof err) != 0) {

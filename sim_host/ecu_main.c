@@ -3,8 +3,9 @@
  *
  *   pfe_ecu --iface IF --nvm FILE [--address SA] [--save-interval-ms MS]
  *           [--vehicles N --position P --gap-cm D] [--allow-real-bus]
- *           [--duration-s S]
+ *           [--duration-s S] [--calib FILE]
  *
+ * FILE: the truck's calibration (sim_host/truck_cal.h), else the default.
  * Runs the ECU loop (firmware/pfe_ecu.h, through hal/hal_ecu_loop.h) every
  * 10 ms on CLOCK_MONOTONIC absolute deadlines (hal/posix/hal_time_posix.h): receives every frame waiting
  * on IF, ticks, sends what the tick produced, saves fuel totals to FILE
@@ -35,6 +36,7 @@
 #include "hal/posix/hal_nvm_file.h"
 #include "hal/posix/hal_time_posix.h"
 #include "hal/socketcan/hal_socketcan.h"
+#include "truck_cal.h"
 
 static volatile sig_atomic_t g_stop;
 
@@ -51,11 +53,50 @@ static void sleep_until_us(hal_time_t *clock, uint64_t deadline)
     }
 }
 
+/* What interface IFACE is, said before anything is opened: 0 when the ECU
+ * may send on it (virtual CAN, or real CAN with allow_real); else 2 for a
+ * name that cannot be one, 1 for an interface that is missing or not CAN
+ * or a real bus refused, each with its own message. */
+static int check_iface(const char *iface, bool allow_real)
+{
+    if (iface[0] == '\0') {
+        fprintf(stderr, "pfe_ecu: --iface needs an interface name, e.g. vcan0 (got an empty one)\n");
+        return 2;
+    }
+    const int kind = hal_socketcan_classify(iface);
+    switch (kind) {
+    case HAL_SOCKETCAN_IF_VIRTUAL_CAN:
+        return 0;
+    case HAL_SOCKETCAN_IF_REAL_CAN:
+        if (allow_real) {
+            return 0;
+        }
+        fprintf(stderr, "pfe_ecu: refusing %s: it is a real CAN bus, not a virtual one (vcan, "
+                        "vxcan); sending on a real bus needs --allow-real-bus\n", iface);
+        return 1;
+    case HAL_SOCKETCAN_IF_NOT_CAN:
+        fprintf(stderr, "pfe_ecu: %s is not a CAN interface (the module needs vcan or vxcan; "
+                        "with --allow-real-bus, a CAN bus)\n", iface);
+        return 1;
+    case HAL_ENODEV:
+        fprintf(stderr, "pfe_ecu: no such interface %s (e.g. ip link add dev vcan0 type vcan)\n",
+                iface);
+        return 1;
+    case HAL_EINVAL:
+        fprintf(stderr, "pfe_ecu: '%s' cannot be an interface name (at most 15 characters)\n",
+                iface);
+        return 2;
+    default:
+        fprintf(stderr, "pfe_ecu: cannot ask the kernel what %s is (rtnetlink failed)\n", iface);
+        return 1;
+    }
+}
+
 static void usage(FILE *f)
 {
     fprintf(f, "usage: pfe_ecu --iface IF --nvm FILE [--address SA] [--save-interval-ms MS]\n"
                "               [--vehicles N --position P --gap-cm D] [--allow-real-bus]\n"
-               "               [--duration-s S]\n");
+               "               [--duration-s S] [--calib FILE]\n");
 }
 
 int main(int argc, char **argv)
@@ -65,6 +106,13 @@ int main(int argc, char **argv)
     unsigned long address = PFE_ECU_DEFAULT_ADDRESS, interval = 10000U, vehicles = 1U;
     unsigned long position = 0U, gap_cm = 1000U, duration = 0U;
     unsigned flags = 0U;
+    static truck_cal_t cal;
+    bool have_cal = false;
+    char cal_err[TRUCK_CAL_ERR_MAX];
+    if (truck_cal_take_arg(&argc, argv, &cal, &have_cal, cal_err, sizeof cal_err) != 0) {
+        fprintf(stderr, "pfe_ecu: %s\n", cal_err);
+        return 2;
+    }
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
@@ -109,14 +157,18 @@ int main(int argc, char **argv)
         usage(stderr);
         return 2;
     }
+    const int if_rc = check_iface(iface, (flags & HAL_SOCKETCAN_ALLOW_REAL_BUS) != 0U);
+    if (if_rc != 0) {
+        return if_rc;
+    }
     hal_can_t *can = NULL;
     int rc = hal_socketcan_open(&can, iface, flags);
     if (rc != 0) {
         fprintf(stderr, "pfe_ecu: cannot open %s: %s\n", iface,
                 (rc == HAL_EPERM) ? "not a virtual CAN interface; sending on a real bus needs "
                                     "--allow-real-bus"
-                : (rc == HAL_ENODEV) ? "no such CAN interface (or no SocketCAN in this kernel)"
-                                     : "socket error");
+                : (rc == HAL_ENODEV) ? "no SocketCAN in this kernel (socket(PF_CAN) refused)"
+                                     : "socket error (socket, setsockopt or bind failed)");
         return 1;
     }
     hal_nvm_t *nvm = NULL;
@@ -128,6 +180,9 @@ int main(int argc, char **argv)
     pfe_ecu_config_t cfg;
     hal_ecu_loop_config(&cfg, (uint8_t)address, (uint32_t)interval, (uint32_t)vehicles,
                         (uint32_t)position, (uint32_t)gap_cm * 10U);
+    if (have_cal) {
+        truck_cal_apply(&cal, &cfg);
+    }
     static pfe_ecu_t ecu;
     static hal_ecu_loop_t loop;
     hal_time_t *clock = hal_time_posix();

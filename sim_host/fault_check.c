@@ -48,6 +48,7 @@
 #include "firmware/pfe_can.h"
 #include "firmware/pfe_codec.h"
 #include "hal/replay/hal_replay.h"
+#include "sim_host/replay_source.h"
 
 #define MAX_FRAMES 400000U
 #define TICK_US 10000U
@@ -83,27 +84,22 @@ typedef struct {
 static cap_t *g_cap;
 static size_t g_n;
 
-static int32_t read_file(void *ctx, uint8_t *buf, uint32_t len)
-{
-    FILE *f = ctx;
-    const size_t got = fread(buf, 1U, len, f);
-    return ((got == 0U) && ferror(f)) ? -1 : (int32_t)got;
-}
-
-/* Reads a candump log through the replay bus's parser into g_cap. */
+/* Reads a CAN log (any form sim_host/canlog.h reads) through the replay
+ * bus into g_cap. */
 static int load(const char *path)
 {
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
-        fprintf(stderr, "pfe_faults: cannot read %s: %s\n", path, strerror(errno));
+    static replay_source_t src;
+    char err[CANLOG_MSG_MAX];
+    if (replay_source_open(&src, path, CANLOG_FMT_AUTO, err, sizeof err) != 0) {
+        fprintf(stderr, "pfe_faults: cannot read %s\n", err);
         return -1;
     }
     static hal_replay_bus_t bus;
-    hal_replay_init(&bus, read_file, f, NULL, NULL, NULL);
+    hal_replay_init_source(&bus, replay_source_next, &src, NULL, NULL, NULL);
     hal_can_t *h = hal_replay_open(&bus);
     g_cap = malloc(sizeof(cap_t) * MAX_FRAMES);
     if (g_cap == NULL) {
-        fclose(f);
+        replay_source_close(&src);
         fprintf(stderr, "pfe_faults: out of memory\n");
         return -1;
     }
@@ -115,7 +111,7 @@ static int load(const char *path)
         while (hal_can_receive(h, &rx) == 0) {
             if (g_n == MAX_FRAMES) {
                 fprintf(stderr, "pfe_faults: %s: more than %u frames\n", path, MAX_FRAMES);
-                fclose(f);
+                replay_source_close(&src);
                 return -1;
             }
             g_cap[g_n].t_us = rx.timestamp_us;
@@ -126,11 +122,11 @@ static int load(const char *path)
     const hal_replay_stats_t *st = hal_replay_stats(&bus);
     hal_can_stats_t hs;
     hal_can_get_stats(h, &hs);
-    fclose(f);
+    replay_source_close(&src);
     if ((st->bad_lines > 0U) || st->read_failed || (hs.rx_dropped > 0U)) {
-        fprintf(stderr, "pfe_faults: %s: %u bad lines (first: line %u, %s), %u frames lost\n", path,
-                st->bad_lines, st->first_bad_line, hal_replay_reason_text(st->first_bad_reason),
-                hs.rx_dropped);
+        fprintf(stderr, "pfe_faults: %s: %u bad lines (the first: %s), %u frames lost%s\n", path,
+                st->bad_lines, (st->bad_lines > 0U) ? replay_source_first_bad(&src) : "none",
+                hs.rx_dropped, st->read_failed ? ", a read error" : "");
         return -1;
     }
     if (g_n == 0U) {

@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #define MS_TO_KMH 3.6
 
@@ -76,6 +77,71 @@ static int bound_run(const node_config_t *cfg, object_choice_t choice, const ref
     }
     object_sim_summary(&sim, summary);
     return (rc == 0) ? 0 : -2;
+}
+
+/* The energy lower bound (fuel_bounds.h): every truck over the whole road. */
+static void energy_bound(const node_config_t *cfg, const ref_road_t *road, double floor_m_s,
+                         double exit_floor_m_s, fuel_energy_bound_t *e)
+{
+    const unsigned n = cfg->n_vehicles;
+    const double g = cfg->env->gravity_um_s2 / 1e6;
+    const double rho = cfg->env->air_density_g_m3 / 1000.0;
+    const double rho_d = cfg->env->fuel_energy_j_ml * 1000.0;
+    const double half_gap = node_desired_gap_m(cfg, cfg->set_speed_m_s) / 2.0;
+    const double entry_m_s = fmax(cfg->initial_speed_m_s, cfg->set_speed_m_s + cfg->follow_margin_m_s);
+    double rise_m = 0.0, level_m = 0.0; /* sum sin(alpha) ds, sum cos(alpha) ds */
+    for (size_t k = 0U; k < road->n_samples; k++) {
+        const double alpha = atan(fmax(-0.5, fmin(0.5, road->grade[k]))); /* as ref_vehicle_resistance */
+        rise_m += sin(alpha) * road->spacing;
+        level_m += cos(alpha) * road->spacing;
+    }
+    const double length_m = node_road_length_m(road);
+    const double v_floor = fmax(0.0, floor_m_s);
+    const double v_exit = fmax(0.0, exit_floor_m_s);
+    *e = (fuel_energy_bound_t){0};
+    e->floor_kmh = v_floor * MS_TO_KMH;
+    e->exit_floor_kmh = v_exit * MS_TO_KMH;
+    e->entry_ceiling_kmh = entry_m_s * MS_TO_KMH;
+    double fuel_l = 0.0;
+    for (unsigned i = 0U; i < n; i++) {
+        const pfe_vehicle_calib_t *c = cfg->vehicle[i];
+        const double m = (double)c->mass_kg;
+        const double kin = 0.5 * (m + (double)c->rot_mass_kg) * ((v_exit * v_exit) - (entry_m_s * entry_m_s));
+        const double grade = m * g * rise_m;
+        const double roll = (c->roll_coef_ppm / 1e6) * m * g * level_m;
+        const double keep = 1.0 - (ref_drag_reduction_pct(cfg->drag, i, n, half_gap) / 100.0);
+        const double air = 0.5 * rho * (c->drag_area_mm2 / 1e6) * keep * v_floor * v_floor * length_m;
+        const double w = fmax(0.0, kin + grade + roll + air);
+        const double aux = (double)c->power_aux_w * w / (double)c->power_max_w; /* time on >= W / Pmax */
+        e->work_kinetic_j += kin;
+        e->work_grade_j += grade;
+        e->work_roll_j += roll;
+        e->work_air_j += air;
+        e->aux_j += aux;
+        fuel_l += (w + aux) / ((c->eta_ppm / 1e6) * rho_d);
+    }
+    e->fuel_l = fuel_l;
+}
+
+const char *fuel_bounds_why_not(const fuel_bounds_t *b, char *buf, size_t len)
+{
+    if ((buf == NULL) || (len == 0U)) {
+        return "";
+    }
+    buf[0] = '\0';
+    size_t used = 0U;
+    if (!b->same_speed) {
+        (void)snprintf(buf, len, "the platoon ends at %.1f km/h, not its start speed %.1f km/h (eq. 5.3)",
+                       b->end_kmh, b->start_kmh);
+        used = strlen(buf);
+    }
+    if (!b->upgrade && (used + 1U < len)) {
+        (void)snprintf(buf + used, len - used,
+                       "%sno upgrade slows the platoon (lowest %.1f km/h), so the v_min and v_max runs "
+                       "need not bracket its speed (5.1.2)",
+                       (used > 0U) ? "; " : "", b->min_kmh);
+    }
+    return buf;
 }
 
 int fuel_bounds_compute(const node_config_t *cfg, const ref_road_t *road, fuel_bounds_t *out,
@@ -152,6 +218,13 @@ int fuel_bounds_compute(const node_config_t *cfg, const ref_road_t *road, fuel_b
     out->upper_l = hi->fuel_l;
     out->same_speed = fabs(out->end_kmh - out->start_kmh) <= FUEL_BOUNDS_SAME_SPEED_KMH;
     out->upgrade = out->min_kmh <= (cfg->set_speed_m_s * MS_TO_KMH) - FUEL_BOUNDS_UPGRADE_DROP_KMH;
+    out->lower_holds = out->same_speed && out->upgrade;
+    out->upper_holds = out->lower_holds;
+    const double margin_m_s = FUEL_BOUNDS_SAME_SPEED_KMH / MS_TO_KMH;
+    energy_bound(cfg, road, (slow.min_kmh / MS_TO_KMH) - margin_m_s,
+                 (slow.end_speed_kmh / MS_TO_KMH) - margin_m_s, &out->energy);
+    out->sound_lower_energy = !out->lower_holds || (out->energy.fuel_l > out->lower_l);
+    out->sound_lower_l = out->sound_lower_energy ? out->energy.fuel_l : out->lower_l;
     return 0;
 }
 
@@ -181,7 +254,7 @@ int route_rank(const route_estimate_t *est, size_t n, size_t *order, size_t *blo
         }
     }
     if (lowest == n) {
-        return 1;
+        return (best->upper_fails == NULL) ? 1 : 2;
     }
     if (blocker != NULL) {
         *blocker = lowest;

@@ -50,9 +50,41 @@
  *   holds a steep downgrade nearly everywhere) is raised to zero.
  *
  * They hold when the route meets the thesis's assumptions (5.1.2, 5.1.4):
- * the platoon ends at the speed it started with, and the route has at least
- * one upgrade on which the platoon cannot hold its set speed.
- * fuel_bounds_t reports whether the object-model run meets them.
+ * the platoon ends at the speed it started with (eq. 5.3: the acceleration
+ * force does no net work where fuel is on), and the route has at least one
+ * upgrade on which the platoon cannot hold its set speed (otherwise the
+ * v_min and v_max runs are not slower and faster than the platoon: the
+ * controllers' ripple decides). fuel_bounds_t reports whether the
+ * object-model run meets them (lower_holds, upper_holds).
+ *
+ * The energy lower bound, for where they do not (fuel_energy_bound_t). On
+ * a climb the platoon cannot hold, it slows with fuel on: the kinetic
+ * energy it gives up does part of the climbing, and eq. 5.3's zero
+ * overstates the work (uphill road: 49.58 L against the node model's
+ * 48.80 L). Truck i's wheel force Fw does, where fuel is on, at least the
+ * work it does over the whole road, since fuel is off only where Fw <= 0
+ * (eq. 3.9). Over the road that work is exact:
+ *
+ *   W_i = (m_i + mj_i) (v_exit^2 - v_entry^2) / 2        kinetic energy
+ *       + m_i g sum_k sin(alpha_k) ds_k                  grade (exact, the height gained)
+ *       + cr_i m_i g sum_k cos(alpha_k) ds_k             rolling (exact)
+ *       + integral of air drag                           >= 1/2 rho cwAf_i (1 - phi_i(d/2)) v_floor^2 L
+ *
+ * and the time with fuel on is at least W_i / Pmax_i (the wheel power never
+ * exceeds Pmax), so
+ *
+ *   fuel_i >= max(0, W_i) (1 + Paux_i / Pmax_i) / (eta_i rho_d).
+ *
+ * It assumes speeds only, each with a margin of FUEL_BOUNDS_SAME_SPEED_KMH:
+ * no truck drives slower than the v_min run's lowest speed less the margin
+ * (v_floor), leaves the road slower than the v_min run's end speed less
+ * the margin, or enters it faster than the followers' set speed plus their
+ * margin (node_config_t), and no gap closes below half the desired gap
+ * (the thesis's own assumption for the air drag, 5.1.2). No upgrade and no
+ * equal end speeds are needed. It is below the thesis's lower bound where
+ * both hold (it counts the downgrades the thesis's window leaves out), so
+ * fuel_bounds_t's sound_lower_l takes the larger of the two where the
+ * thesis's assumptions hold and the energy bound alone where they do not.
  */
 #ifndef FUEL_BOUNDS_H
 #define FUEL_BOUNDS_H
@@ -74,6 +106,14 @@ typedef struct {
     double fuel_l;                                /* the bound */
 } fuel_bound_terms_t;
 
+/* The energy lower bound (above): its terms summed over the trucks. */
+typedef struct {
+    double work_kinetic_j, work_grade_j, work_roll_j, work_air_j;
+    double aux_j;                                 /* sum Paux_i W_i / Pmax_i */
+    double floor_kmh, exit_floor_kmh, entry_ceiling_kmh; /* the speeds it assumes */
+    double fuel_l;
+} fuel_energy_bound_t;
+
 typedef struct {
     /* The object model's prediction (OBJECT_NOMINAL). */
     double fuel_l, time_s, start_kmh, end_kmh, min_kmh;
@@ -85,7 +125,20 @@ typedef struct {
     double window_m;             /* (N - 1) dp each side of the centre */
     bool same_speed;             /* |end - start| <= FUEL_BOUNDS_SAME_SPEED_KMH */
     bool upgrade;                /* the prediction drops FUEL_BOUNDS_UPGRADE_DROP_KMH below set */
+    /* Whether the thesis's bounds (lower_l, upper_l) hold their
+     * assumptions: same_speed and upgrade, for both. */
+    bool lower_holds, upper_holds;
+    fuel_energy_bound_t energy;  /* holds without them */
+    /* The lower bound to rely on: max(lower_l, energy) where lower_holds,
+     * else the energy bound; sound_lower_energy says which one it is. */
+    double sound_lower_l;
+    bool sound_lower_energy;
 } fuel_bounds_t;
+
+/* Why a bound's assumptions fail, as a phrase ("the platoon ends at 74.3 km/h,
+ * not its start speed 90.0 km/h (eq. 5.3)"), or "" when they hold; b is a
+ * filled fuel_bounds_t. Returns buf. */
+const char *fuel_bounds_why_not(const fuel_bounds_t *b, char *buf, size_t len);
 
 /* Smallest and largest grade (fraction) over the samples that
  * [centre - half_window, centre + half_window] touches, the road's end
@@ -105,17 +158,22 @@ int fuel_bounds_compute(const node_config_t *cfg, const ref_road_t *road, fuel_b
 
 /* ---------------------------------------------------------------- route choice */
 
+/* lower_l must be a lower bound that holds (sound_lower_l); upper_fails is
+ * NULL when upper_l holds its assumptions, else why it does not. */
 typedef struct {
     double fuel_l, lower_l, upper_l;
+    const char *upper_fails;
 } route_estimate_t;
 
 /*
  * Ranks n routes by predicted fuel (ties by index): order[0 .. n-1] receives
  * route indices, best first. Returns 1 when the best route is guaranteed
- * best (thesis 5.1: its upper bound is below the lower bound of every other
- * route), 0 when it is not, and then *blocker (if not NULL) is a route whose
- * lower bound is at or below the best's upper bound, the lowest such; -1
- * for n < 2 or a NULL argument. O(n^2), no allocation.
+ * best (thesis 5.1: its upper bound holds its assumptions and is below the
+ * lower bound of every other route); 0 when the bounds overlap, and then
+ * *blocker (if not NULL) is a route whose lower bound is at or below the
+ * best's upper bound, the lowest such; 2 when the numbers would guarantee
+ * it but the best route's upper bound does not hold its assumptions
+ * (upper_fails); -1 for n < 2 or a NULL argument. O(n^2), no allocation.
  */
 int route_rank(const route_estimate_t *est, size_t n, size_t *order, size_t *blocker);
 

@@ -499,3 +499,93 @@ int object_sim_run(object_sim_t *s, model_summary_t *out)
     object_sim_summary(s, out);
     return (rc == 0) ? 0 : -1;
 }
+
+/* ---------------------------------------------------------------- fed one trajectory */
+
+static size_t profile_points(const ref_road_t *road, double step_m)
+{
+    return (size_t)floor((node_road_length_m(road) / step_m) + 1e-9) + 1U;
+}
+
+int node_mean_speed_profile(const node_config_t *cfg, const ref_road_t *road, double step_m,
+                            double *speed_m_s, size_t n_points, node_sim_t *s)
+{
+    if ((speed_m_s == NULL) || (s == NULL) || !(step_m > 0.0) || (road == NULL) || (road->n_samples < 1U) ||
+        (n_points != profile_points(road, step_m)) || (node_sim_init(s, cfg, road) != 0)) {
+        return -1;
+    }
+    const unsigned n = cfg->n_vehicles;
+    for (size_t k = 0U; k < n_points; k++) {
+        speed_m_s[k] = 0.0;
+    }
+    for (unsigned j = 0U; j < n; j++) {
+        /* trucks start at or behind 0: one exactly there has passed x_0 */
+        speed_m_s[0] += (s->position_m[j] == 0.0) ? (s->speed_m_s[j] / n) : 0.0;
+    }
+    double x0[NODE_MAX_VEHICLES], v0[NODE_MAX_VEHICLES];
+    int rc;
+    do {
+        for (unsigned j = 0U; j < n; j++) {
+            x0[j] = s->position_m[j];
+            v0[j] = s->speed_m_s[j];
+        }
+        rc = node_sim_step(s);
+        for (unsigned j = 0U; (j < n) && (rc == 1); j++) {
+            const double x1 = s->position_m[j];
+            if (!(x1 > x0[j]) || (x1 < 0.0)) {
+                continue;
+            }
+            /* grid points x0 < k step <= x1 */
+            double first = ceil(fmax(x0[j], 0.0) / step_m);
+            first += ((first * step_m) <= x0[j]) ? 1.0 : 0.0;
+            for (double kk = first; (kk * step_m <= x1) && (kk < (double)n_points); kk += 1.0) {
+                const double f = ((kk * step_m) - x0[j]) / (x1 - x0[j]);
+                speed_m_s[(size_t)kk] += (v0[j] + (f * (s->speed_m_s[j] - v0[j]))) / n;
+            }
+        }
+    } while (rc == 1);
+    return (rc == 0) ? 0 : -2;
+}
+
+int node_fuel_fed(const node_config_t *cfg, const ref_road_t *road, double step_m,
+                  const double *speed_m_s, size_t n_points, bool gap_at_set_speed, double *node_l,
+                  double *object_l)
+{
+    static ref_platoon_t pl;
+    if ((speed_m_s == NULL) || (node_l == NULL) || (object_l == NULL) || !(step_m > 0.0) ||
+        (road == NULL) || (road->n_samples < 1U) || (n_points != profile_points(road, step_m)) ||
+        (object_platoon_build(&pl, cfg, OBJECT_NOMINAL) != 0)) {
+        return -1;
+    }
+    const unsigned n = cfg->n_vehicles;
+    const ref_vehicle_t *o = &pl.object;
+    double node = 0.0, object = 0.0;
+    for (size_t k = 0U; k + 1U < n_points; k++) {
+        const double va = speed_m_s[k];
+        const double vb = speed_m_s[k + 1U];
+        const double v = (va + vb) / 2.0;
+        if (!(v > 0.0)) {
+            return -1;
+        }
+        const double dt = step_m / v;
+        const double a = ((vb * vb) - (va * va)) / (2.0 * step_m);
+        const double grade = node_road_grade(road, ((double)k + 0.5) * step_m);
+        const double gap = node_desired_gap_m(cfg, gap_at_set_speed ? cfg->set_speed_m_s : v);
+        for (unsigned i = 0U; i < n; i++) {
+            ref_vehicle_t t;
+            ref_vehicle_init(&t, cfg->vehicle[i], cfg->env,
+                             (n > 1U) ? ref_drag_reduction_pct(cfg->drag, i, n, gap) : 0.0);
+            const double f = (t.mass_fuel * a) + ref_vehicle_resistance(&t, v, grade, pl.gravity);
+            if (f > 0.0) {                                          /* eq. 3.9 */
+                node += ((f * step_m) + (t.power_aux * dt)) * t.fuel_per_j;
+            }
+        }
+        const double f = (o->mass_fuel * a) + ref_object_resistance(&pl, v, grade);
+        if (f > 0.0) {
+            object += ((f * step_m) + (o->power_aux * dt)) * o->fuel_per_j; /* eq. 4.14 */
+        }
+    }
+    *node_l = node;
+    *object_l = object;
+    return 0;
+}

@@ -247,4 +247,40 @@ int object_sim_step(object_sim_t *s);
 int object_sim_run(object_sim_t *s, model_summary_t *out);
 void object_sim_summary(const object_sim_t *s, model_summary_t *out);
 
+/* ---------------------------------------------------------------- fed one trajectory */
+
+/*
+ * Thesis table 5.4: the two fuel models fed the same speed trajectory (the
+ * mean of the node model's speeds) and the same grades, so that only the
+ * fuel models differ, not the speeds they simulate.
+ *
+ * node_mean_speed_profile runs the node model over the road and returns at
+ * x_k = k step_m (k = 0 .. n_points - 1, n_points = road length / step_m +
+ * 1) the mean over trucks of each one's speed as it passes x_k (linear
+ * between its steps). Returns 0, -1 (bad arguments: a configuration that
+ * fails node_config_check, n_points not matching, step_m not > 0) or -2
+ * (the node model stalled). s is the caller's (large) node_sim_t.
+ *
+ * node_fuel_fed drives that profile over the road in steps of step_m: the
+ * speed the mean of the step's ends, the acceleration (v1^2 - v0^2) /
+ * (2 step_m), the time step_m / speed, the grade at the step's middle.
+ *   node:   each truck's chapter 3 fuel model (eq. 3.7 to 3.11, exact
+ *           trigonometry, its own efficiency), with the drag reduction of
+ *           the desired gap at that speed, d0 + h v (the gaps themselves
+ *           are not in the trajectory), fuel where its own wheel force is
+ *           positive; with gap_at_set_speed the reduction of the desired
+ *           gap at the set speed instead, as the object model's (to show
+ *           how much of the difference the gap makes);
+ *   object: eq. 4.14 with the aggregates of object_platoon_build
+ *           (OBJECT_NOMINAL: small angles, the reduction of the desired
+ *           gap at the set speed, the mean efficiency), fuel where the
+ *           platoon's force is positive.
+ * Returns 0 or -1 (bad arguments).
+ */
+int node_mean_speed_profile(const node_config_t *cfg, const ref_road_t *road, double step_m,
+                            double *speed_m_s, size_t n_points, node_sim_t *s);
+int node_fuel_fed(const node_config_t *cfg, const ref_road_t *road, double step_m,
+                  const double *speed_m_s, size_t n_points, bool gap_at_set_speed, double *node_l,
+                  double *object_l);
+
 #endif /* NODE_MODEL_H */

@@ -46,7 +46,8 @@
  * message matches, remote and error frames are not in the CSV.
  *
  * A summary on standard error: frames read, decoded, not matched, parse
- * errors. Exit status: 0; 1 unreadable DBC or log, or a bad line (without
+ * errors. Exit status: 0; 1 unreadable DBC or log, a DBC without a message
+ * (an empty file: nothing to decode with), or a bad line (without
  * --skip-errors: decoding stops there); 3 usage error.
  */
 #define _POSIX_C_SOURCE 200809L
@@ -588,6 +589,13 @@ int main(int argc, char **argv)
         } else {
             fprintf(stderr, "pfe_decode: %s: %s\n", dbc_path, err.message);
         }
+        return EXIT_INPUT;
+    }
+    if (d.dbc->n_messages == 0U) {
+        /* an empty or comment-only file parses, but decodes nothing */
+        fprintf(stderr, "pfe_decode: %s: no message (BO_) in the DBC: nothing to decode with\n",
+                dbc_path);
+        dbc_free(d.dbc);
         return EXIT_INPUT;
     }
     int status = 0;

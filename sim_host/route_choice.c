@@ -8,18 +8,25 @@
  * For each route (road CSV, road_csv.h) the object model predicts the
  * platoon's fuel and travel time, and fuel_bounds.h gives the lower and
  * upper bound. Routes are ranked by predicted fuel. The best one is called
- * "guaranteed best" only when its upper bound is below every other route's
- * lower bound; otherwise the route whose bounds overlap it is named.
+ * "guaranteed best" only when every bound the claim relies on holds its
+ * assumptions and the numbers agree: the best route's upper bound (thesis
+ * 5.1: same speed at the start and the end, an upgrade that slows the
+ * platoon) is below every other route's lower bound. The other routes'
+ * lower bound is the thesis's where its assumptions hold, and the energy
+ * bound (fuel_bounds.h) where they do not, which holds without them.
+ * Otherwise the verdict is "best by estimate, not guaranteed" with the
+ * reason: the route whose bounds overlap the best's, or the assumption the
+ * best route's upper bound misses.
  *
  * --truck adds one truck (in platoon order, the first leads) with the
  * default calibration (pfe_calib.h) but this mass, wheel power, cw Af and
  * efficiency; without --truck the platoon is N default trucks (default 5).
- * A route on which the bounds' assumptions do not hold (same speed at the
- * start and end; an upgrade the platoon cannot climb at its set speed) is
- * marked in the table.
+ * A route on which the thesis's bounds' assumptions do not hold is marked
+ * in the table, and its lower bound is the energy bound.
  *
- * Exit status: 0, 1 when the platoon stalls on a route, 2 on bad arguments
- * or input (the message names the file, line and reason).
+ * Exit status: 0 guaranteed best, 3 best by estimate, not guaranteed, 1
+ * when the platoon stalls on a route, 2 on bad arguments or input (the
+ * message names the file, line and reason).
  */
 #include <errno.h>
 #include <math.h>
@@ -32,6 +39,7 @@
 #include "node_model.h"
 
 #define MAX_ROUTES 16
+#define EXIT_NOT_GUARANTEED 3
 
 static void usage(FILE *f)
 {
@@ -174,6 +182,7 @@ int main(int argc, char **argv)
     }
 
     static fuel_bounds_t b[MAX_ROUTES];
+    static char why[MAX_ROUTES][256];
     route_estimate_t est[MAX_ROUTES];
     double length_km[MAX_ROUTES];
     for (int r = 0; r < n_routes; r++) {
@@ -189,7 +198,9 @@ int main(int argc, char **argv)
             fprintf(stderr, "route_choice: %s: %s\n", routes[r], err);
             return (rc == -2) ? 1 : 2;
         }
-        est[r] = (route_estimate_t){b[r].fuel_l, b[r].lower_l, b[r].upper_l};
+        (void)fuel_bounds_why_not(&b[r], why[r], sizeof why[r]);
+        est[r] = (route_estimate_t){b[r].fuel_l, b[r].sound_lower_l, b[r].upper_l,
+                                    b[r].upper_holds ? NULL : why[r]};
     }
     size_t order[MAX_ROUTES];
     size_t blocker = 0U;
@@ -205,38 +216,39 @@ int main(int argc, char **argv)
         printf(")");
     }
     printf(", set speed %.1f km/h, time gap %.2f s\n", set_kmh, cfg.time_gap_s);
-    printf("fuel: object model prediction; bounds: thesis 5.1 (fuel_bounds.h)\n\n");
-    printf("%-4s %-14s %8s %12s %10s %10s %12s  %s\n", "rank", "route", "km", "fuel [L]", "lower [L]",
-           "upper [L]", "time [min]", "bounds' assumptions");
+    printf("fuel: object model prediction; bounds: thesis 5.1, lower: the thesis's (5.1) or the "
+           "energy bound (E) where the thesis's does not hold (fuel_bounds.h)\n\n");
+    printf("%-4s %-14s %8s %12s %12s %10s %12s  %s\n", "rank", "route", "km", "fuel [L]", "lower [L]",
+           "upper [L]", "time [min]", "thesis's bounds' assumptions");
     for (int k = 0; k < n_routes; k++) {
         const size_t r = order[k];
         const fuel_bounds_t *x = &b[r];
-        char notes[160] = "";
-        if (!x->same_speed) {
-            (void)snprintf(notes, sizeof notes, "end speed %.1f km/h differs from the start; ", x->end_kmh);
-        }
-        if (!x->upgrade) {
-            (void)snprintf(notes + strlen(notes), sizeof notes - strlen(notes),
-                           "no upgrade slows the platoon");
-        }
-        printf("%-4d %-14s %8.2f %12.3f %10.3f %10.3f %12.2f  %s\n", k + 1, base_name(routes[r]),
-               length_km[r], x->fuel_l, x->lower_l, x->upper_l, x->time_s / 60.0,
-               (notes[0] != '\0') ? notes : "hold");
+        printf("%-4d %-14s %8.2f %12.3f %8.3f %-3s %10.3f %12.2f  %s\n", k + 1, base_name(routes[r]),
+               length_km[r], x->fuel_l, x->sound_lower_l, x->sound_lower_energy ? "E" : "5.1", x->upper_l,
+               x->time_s / 60.0, (why[r][0] != '\0') ? why[r] : "hold");
     }
     const size_t best = order[0];
     printf("\n");
     if (guaranteed == 1) {
         size_t lowest = order[1];
         for (int k = 2; k < n_routes; k++) {
-            lowest = (b[order[k]].lower_l < b[lowest].lower_l) ? order[k] : lowest;
+            lowest = (b[order[k]].sound_lower_l < b[lowest].sound_lower_l) ? order[k] : lowest;
         }
         printf("guaranteed best: %s (its upper bound %.3f L is below every other route's lower bound; "
                "the lowest of those is %s, %.3f L)\n",
-               base_name(routes[best]), b[best].upper_l, base_name(routes[lowest]), b[lowest].lower_l);
-    } else {
-        printf("best by prediction: %s, not guaranteed: its upper bound %.3f L is not below the "
-               "lower bound of %s, %.3f L\n",
-               base_name(routes[best]), b[best].upper_l, base_name(routes[blocker]), b[blocker].lower_l);
+               base_name(routes[best]), b[best].upper_l, base_name(routes[lowest]), b[lowest].sound_lower_l);
+        return 0;
     }
-    return 0;
+    if (guaranteed == 2) {
+        printf("best by estimate, not guaranteed: %s (its upper bound %.3f L is below every other "
+               "route's lower bound, but it does not hold on %s: %s)\n",
+               base_name(routes[best]), b[best].upper_l, base_name(routes[best]), why[best]);
+    } else {
+        printf("best by estimate, not guaranteed: %s (its upper bound %.3f L is not below the "
+               "lower bound of %s, %.3f L%s%s)\n",
+               base_name(routes[best]), b[best].upper_l, base_name(routes[blocker]),
+               b[blocker].sound_lower_l, b[best].upper_holds ? "" : "; nor does that upper bound hold: ",
+               b[best].upper_holds ? "" : why[best]);
+    }
+    return EXIT_NOT_GUARANTEED;
 }

@@ -5,8 +5,10 @@
  *   run_report CAPTURE.log [--module-sa SA] [--warmup-s S] [--rate-floor-l-h F]
  *              [--vehicles N] [--position P] [--gap-m D]
  *              [--out PREFIX] [--no-plot] [--gnuplot PROG] [--title TEXT]
- *              [--expect FILE] [--junit FILE]
+ *              [--expect FILE] [--junit FILE] [--calib FILE]
  *
+ * --calib: the trucks' calibration (sim_host/truck_cal.h) the module ran
+ * with, for the reference too (default: the default calibration).
  * CAPTURE is a candump log (candump -L, sim_host/pfe_record; format in
  * sim_host/capture.h) of one bus: the inputs (CCVS1, SSI, PFE_PlatoonConfig,
  * anything not from the module) and the module's answers (source address
@@ -31,7 +33,10 @@
  * module_total_l, ref_total_l; NA where there is no value), PREFIX.metrics
  * (every quantity below, "name value"), PREFIX.gp and, through gnuplot,
  * PREFIX.png (speed, grade, fuel rate and fuel used, module against
- * reference). PREFIX defaults to build/run/report; folders are created.
+ * reference; and the module's predictions with their bounds against the
+ * fuel used over each one's horizon, sim_host/prediction_judge.h, whose
+ * rows are in PREFIX.prediction.csv). PREFIX defaults to build/run/report;
+ * folders are created.
  *
  * --expect FILE: expected values, one per line, '#' starts a comment:
  *     NAME VALUE TOL      |measured - VALUE| <= TOL; TOL absolute, or with
@@ -64,12 +69,18 @@
 #include "../firmware/pfe_codec.h"
 #include "bus_ref.h"
 #include "capture.h"
+#include "hal/replay/hal_replay_ecu.h"
+#include "prediction_judge.h"
+#include "truck_cal.h"
 
 extern char **environ;
 
 #define PI 3.14159265358979323846
 #define L_S_TO_L_H 3600.0
 #define SPEED_GAP_MAX_US 1000000U   /* longer without CCVS1: no distance counted */
+/* A silence pfe_ecu_replay crosses in one jump (hal/replay/hal_replay_ecu.h). */
+#define REPLAY_TAIL_US ((uint64_t)HAL_REPLAY_ECU_TAIL_US)
+#define REPLAY_GAP_US ((uint64_t)HAL_REPLAY_ECU_GAP_US)
 #define MAX_EXPECT 64U
 #define PATH_MAX_LEN 4096U
 
@@ -79,8 +90,11 @@ enum {
     Q_DURATION, Q_DISTANCE, Q_MEAN_SPEED, Q_INPUT_FRAMES, Q_MODULE_FRAMES, Q_LFE1, Q_LFE1_NA,
     Q_MAX_RATE_PCT, Q_MAX_RATE_LH, Q_MAX_PRATE_PCT, Q_MAX_PRATE_LH, Q_TOTAL, Q_REF_TOTAL,
     Q_TOTAL_ERR, Q_PTOTAL, Q_REF_PTOTAL, Q_PTOTAL_ERR, Q_OVERRUNS, Q_RX_DROPPED, Q_TX_DROPPED,
-    Q_NORMAL_PCT, Q_CAPTURE_DROPPED, Q_INPUT_EVENTS, Q_DISTURBED_PCT, Q_COUNT
+    Q_NORMAL_PCT, Q_CAPTURE_DROPPED, Q_INPUT_EVENTS, Q_DISTURBED_PCT, Q_GAPS,
+    Q_ENGINE_FRAMES, Q_ENGINE_PAIRS, Q_ENGINE_R, Q_ENGINE_RATIO, Q_ENGINE_R_IDENT,
+    Q_ENGINE_RATIO_IDENT, Q_ENGINE_R_CALIB, Q_ENGINE_RATIO_CALIB, Q_COUNT
 };
+#define Q_ALL (Q_COUNT + PJ_Q_COUNT) /* the prediction's after them (prediction_judge.h) */
 
 typedef struct {
     const char *name;
@@ -90,25 +104,28 @@ typedef struct {
     const char *why_not;    /* when not measured */
 } quantity_t;
 
-static quantity_t g_q[Q_COUNT] = {
+static quantity_t g_q[Q_ALL] = {
     [Q_DURATION] = {"duration_s", "first to last input frame, s", 0.0, false, NULL},
     [Q_DISTANCE] = {"distance_km", "distance driven (CCVS1 speed over time), km", 0.0, false, NULL},
     [Q_MEAN_SPEED] = {"mean_speed_kmh", "distance / duration, km/h", 0.0, false, NULL},
     [Q_INPUT_FRAMES] = {"input_frames", "J1939 frames not from the module", 0.0, false, NULL},
     [Q_MODULE_FRAMES] = {"module_frames", "J1939 frames from the module", 0.0, false, NULL},
-    [Q_LFE1] = {"lfe1_frames", "LFE1 frames judged (after warm-up, up to the last input)", 0.0,
+    [Q_LFE1] = {"lfe1_frames", "own-truck rate frames judged (PFE_OwnFuel, else the module's "
+                "LFE1; after warm-up, up to the last input)", 0.0,
                 false, NULL},
     [Q_LFE1_NA] = {"lfe1_not_available",
                    "of those, fuel rate not available where the reference has one", 0.0, false,
                    NULL},
-    [Q_MAX_RATE_PCT] = {"max_rate_error_pct", "largest LFE1 fuel rate error, % of reference", 0.0,
+    [Q_MAX_RATE_PCT] = {"max_rate_error_pct", "largest own-truck fuel rate error, % of reference", 0.0,
                         false, NULL},
-    [Q_MAX_RATE_LH] = {"max_rate_error_l_h", "largest LFE1 fuel rate error, L/h", 0.0, false, NULL},
+    [Q_MAX_RATE_LH] = {"max_rate_error_l_h", "largest own-truck fuel rate error, L/h", 0.0, false,
+                       NULL},
     [Q_MAX_PRATE_PCT] = {"max_platoon_rate_error_pct",
                          "largest PFE_PlatoonFuel rate error, % of reference", 0.0, false, NULL},
     [Q_MAX_PRATE_LH] = {"max_platoon_rate_error_l_h", "largest PFE_PlatoonFuel rate error, L/h",
                         0.0, false, NULL},
-    [Q_TOTAL] = {"total_fuel_l", "own truck's fuel used by the module (HRLFC last - first), L",
+    [Q_TOTAL] = {"total_fuel_l", "own truck's fuel used by the module (PFE_OwnFuel, else HRLFC: "
+                 "last - first), L",
                  0.0, false, NULL},
     [Q_REF_TOTAL] = {"ref_total_fuel_l", "the same by the reference, L", 0.0, false, NULL},
     [Q_TOTAL_ERR] = {"total_fuel_error_pct", "their difference, % of the reference", 0.0, false,
@@ -133,6 +150,26 @@ static quantity_t g_q[Q_COUNT] = {
     [Q_DISTURBED_PCT] = {"rate_frames_disturbed_pct",
                          "LFE1 and PFE_PlatoonFuel not judged: 2 s after an input timing event "
                          "or 5 lost module ticks, %", 0.0, false, NULL},
+    [Q_GAPS] = {"gaps_skipped", "silences over 11 s the reference crossed in one jump "
+                "(as pfe_ecu_replay does)", 0.0, false, NULL},
+    [Q_ENGINE_FRAMES] = {"engine_lfe1_frames", "valid LFE1 frames from the engine (a node other "
+                         "than the module)", 0.0, false, NULL},
+    [Q_ENGINE_PAIRS] = {"engine_pairs", "module own-truck rates with an engine LFE1 at most "
+                        "300 ms older", 0.0, false, NULL},
+    [Q_ENGINE_R] = {"engine_rate_r", "Pearson r, module own-truck rate against the engine's LFE1",
+                    0.0, false, NULL},
+    [Q_ENGINE_RATIO] = {"engine_fuel_ratio", "module's integrated own fuel / the engine's over "
+                        "the pairs", 0.0, false, NULL},
+    [Q_ENGINE_R_IDENT] = {"engine_rate_r_identified", "the same r, PFE_OwnFuel ModelIdentified 1",
+                          0.0, false, NULL},
+    [Q_ENGINE_RATIO_IDENT] = {"engine_fuel_ratio_identified",
+                              "the same ratio, PFE_OwnFuel ModelIdentified 1", 0.0, false, NULL},
+    [Q_ENGINE_R_CALIB] = {"engine_rate_r_unidentified",
+                          "the same r, ModelIdentified 0 (calibrated model)", 0.0, false, NULL},
+    [Q_ENGINE_RATIO_CALIB] = {"engine_fuel_ratio_unidentified",
+                              "the same ratio, ModelIdentified 0 (calibrated model)", 0.0, false,
+                              NULL},
+    PREDICTION_JUDGE_QUANTITIES(Q_COUNT),
 };
 
 static void set_q(int k, double v)
@@ -149,7 +186,7 @@ static void unset_q(int k, const char *why)
 
 static int find_q(const char *name)
 {
-    for (int k = 0; k < Q_COUNT; k++) {
+    for (int k = 0; k < Q_ALL; k++) {
         if (strcmp(g_q[k].name, name) == 0) {
             return k;
         }
@@ -164,6 +201,7 @@ typedef struct {
     unsigned long module_sa, vehicles, position;
     double warmup_s, floor_l_h, gap_m;
     bool plot;
+    const truck_cal_t *cal;            /* --calib, or NULL */
 } options_t;
 
 static void usage(FILE *f)
@@ -172,9 +210,9 @@ static void usage(FILE *f)
             "usage: run_report CAPTURE.log [--module-sa SA] [--warmup-s S] [--rate-floor-l-h F]\n"
             "                  [--vehicles N] [--position P] [--gap-m D]\n"
             "                  [--out PREFIX] [--no-plot] [--gnuplot PROG] [--title TEXT]\n"
-            "                  [--expect FILE] [--junit FILE]\n"
+            "                  [--expect FILE] [--junit FILE] [--calib FILE]\n"
             "quantities for --expect:\n");
-    for (int k = 0; k < Q_COUNT; k++) {
+    for (int k = 0; k < Q_ALL; k++) {
         fprintf(f, "  %-28s %s\n", g_q[k].name, g_q[k].what);
     }
 }
@@ -548,8 +586,57 @@ static void gp_quoted(FILE *f, const char *s)
     fputc('\'', f);
 }
 
+/* What the CSV holds, for a plot of what is there: values per column
+ * (speed, grade, module rate, reference rate, module total, reference
+ * total) and the span of its times. */
+#define CSV_COLS 6
+typedef struct {
+    size_t have[CSV_COLS];
+    size_t rows;
+    double t_first, t_last;
+} plot_data_t;
+
+static void plot_note(plot_data_t *pd, double t_s, const bool have[CSV_COLS])
+{
+    if (pd->rows == 0U) {
+        pd->t_first = t_s;
+    }
+    pd->t_last = t_s;
+    pd->rows++;
+    for (int c = 0; c < CSV_COLS; c++) {
+        pd->have[c] += have[c] ? 1U : 0U;
+    }
+}
+
+/* One panel: the curves whose column has values; a panel with none says
+ * so instead (gnuplot stops on a plot with no point: "x range is
+ * invalid"). */
+static void plot_panel(FILE *f, const plot_data_t *pd, const char *ylabel, int n,
+                       const int cols[], const char *const styles[], const char *none)
+{
+    fprintf(f, "set ylabel '%s'\n", ylabel);
+    bool any = false;
+    for (int k = 0; k < n; k++) {
+        any = any || (pd->have[cols[k] - 2] > 0U);
+    }
+    if (!any) {
+        fprintf(f, "set label 1 '%s' at graph 0.5, 0.5 center\nset yrange [0:1]\nunset key\n"
+                   "plot 2 notitle\nunset label 1\nset autoscale y\nset key\n", none);
+        return;
+    }
+    const char *sep = "plot ";
+    for (int k = 0; k < n; k++) {
+        if (pd->have[cols[k] - 2] > 0U) {
+            fprintf(f, "%scsv skip 1 using 1:%d %s", sep, cols[k], styles[k]);
+            sep = ", \\\n     ";
+        }
+    }
+    fprintf(f, "\n");
+}
+
 static int write_plot_script(const char *gp_path, const char *csv_path, const char *png_path,
-                             const char *title)
+                             const char *title, const plot_data_t *pd,
+                             const char *prediction_csv)
 {
     FILE *f = fopen(gp_path, "w");
     if (f == NULL) {
@@ -557,26 +644,43 @@ static int write_plot_script(const char *gp_path, const char *csv_path, const ch
         return -1;
     }
     fprintf(f, "# Written by run_report: gnuplot %s\n", gp_path);
-    fprintf(f, "set terminal pngcairo noenhanced size 1100,1400 font 'sans,10'\nset output ");
+    fprintf(f, "set terminal pngcairo noenhanced size 1100,%d font 'sans,10'\nset output ",
+            (prediction_csv != NULL) ? 1750 : 1400);
     gp_quoted(f, png_path);
     fprintf(f, "\nset datafile separator ','\nset datafile missing 'NA'\n");
     fprintf(f, "set grid\nset key top right opaque box\nset lmargin 12\nset xlabel 'time (s)'\n");
-    fprintf(f, "set multiplot layout 4,1 title ");
+    /* an explicit time range: one row, or none with values, is a range too */
+    const double span = pd->t_last - pd->t_first;
+    fprintf(f, "set xrange [%.3f:%.3f]\n", (span > 0.0) ? pd->t_first : (pd->t_first - 1.0),
+            (span > 0.0) ? pd->t_last : (pd->t_last + 1.0));
+    fprintf(f, "set multiplot layout %d,1 title ", (prediction_csv != NULL) ? 5 : 4);
     gp_quoted(f, title);
     fprintf(f, " font 'sans,12'\ncsv = ");
     gp_quoted(f, csv_path);
-    fprintf(f, "\n"
-               "set ylabel 'speed (km/h)'\n"
-               "plot csv skip 1 using 1:2 with lines lw 1.5 lc rgb '#1f77b4' title 'CCVS1 wheel-based speed (input)'\n"
-               "set ylabel 'grade (%%)'\n"
-               "plot csv skip 1 using 1:3 with lines lw 1.2 lc rgb '#2ca02c' title 'SSI road grade, tan(pitch) (input)'\n"
-               "set ylabel 'fuel rate (L/h)'\n"
-               "plot csv skip 1 using 1:4 with lines lw 2.5 lc rgb '#d62728' title 'module (LFE1)', \\\n"
-               "     csv skip 1 using 1:5 with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference (double precision)'\n"
-               "set ylabel 'fuel used (L)'\n"
-               "plot csv skip 1 using 1:6 with steps lw 2.5 lc rgb '#d62728' title 'module (HRLFC total)', \\\n"
-               "     csv skip 1 using 1:7 with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference'\n"
-               "unset multiplot\n");
+    fprintf(f, "\n");
+    static const int speed[] = {2};
+    static const char *const speed_st[] = {
+        "with lines lw 1.5 lc rgb '#1f77b4' title 'CCVS1 wheel-based speed (input)'"};
+    plot_panel(f, pd, "speed (km/h)", 1, speed, speed_st, "no valid CCVS1 speed in the capture");
+    static const int grade[] = {3};
+    static const char *const grade_st[] = {
+        "with lines lw 1.2 lc rgb '#2ca02c' title 'SSI road grade, tan(pitch) (input)'"};
+    plot_panel(f, pd, "grade (%)", 1, grade, grade_st, "no SSI pitch in the capture");
+    static const int rate[] = {4, 5};
+    static const char *const rate_st[] = {
+        "with lines lw 2.5 lc rgb '#d62728' title 'module (own truck)'",
+        "with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference (double precision)'"};
+    plot_panel(f, pd, "fuel rate (L/h)", 2, rate, rate_st,
+               "no fuel rate: neither the module nor the reference has one");
+    static const int used[] = {6, 7};
+    static const char *const used_st[] = {
+        "with steps lw 2.5 lc rgb '#d62728' title 'module (own truck total)'",
+        "with lines lw 1.2 dt 2 lc rgb '#000000' title 'reference'"};
+    plot_panel(f, pd, "fuel used (L)", 2, used, used_st, "no fuel total from the module");
+    if (prediction_csv != NULL) {
+        prediction_judge_plot(f, prediction_csv);
+    }
+    fprintf(f, "unset multiplot\n");
     return close_out(f, gp_path);
 }
 
@@ -673,8 +777,10 @@ typedef struct {
 } state_t;
 
 typedef struct {
-    tick_t *ticks;                  /* owned */
+    tick_t *ticks;                  /* owned: the ticks some record asks for */
     size_t n_ticks;
+    size_t gaps_skipped;            /* silences crossed in one jump */
+    uint64_t ticks_skipped;
     state_t *states;                /* owned, one per input frame */
     size_t n_states;
     unsigned n_vehicles, position, reconfigurations;
@@ -697,46 +803,80 @@ static int grow(void **p, size_t *room, size_t n, size_t size)
     return 0;
 }
 
+/* Stores tick tt of ref when a capture record is waiting for it: the
+ * first tick at or after each record's time is all the analysis asks for
+ * (tick_at()), so the ticks kept are at most the records, whatever the
+ * capture's time span. *pending: the first record not yet given a tick. */
+static int keep_tick(const capture_t *cap, const bus_ref_t *ref, uint64_t tt, size_t *pending,
+                     ref_run_t *run, size_t *room)
+{
+    if ((*pending >= cap->n) || (cap->recs[*pending].t_us > tt)) {
+        return 0;
+    }
+    while ((*pending < cap->n) && (cap->recs[*pending].t_us <= tt)) {
+        (*pending)++;
+    }
+    if (grow((void **)&run->ticks, room, run->n_ticks, sizeof(tick_t)) != 0) {
+        return -1;
+    }
+    tick_t *t = &run->ticks[run->n_ticks++];
+    t->t_us = tt;
+    t->own_used = bus_ref_own_used(ref);
+    t->platoon_used = bus_ref_platoon_used(ref);
+    return 0;
+}
+
 /*
- * The reference over the capture's inputs (sim_host/bus_ref.h): its ticks,
- * for fuel used, and after every input frame what a module tick at that
- * instant would answer (bus_ref_peek()), to match the module's rates
- * whatever its tick phase. Runs until 20 ms after the capture's last frame.
+ * The reference over the capture's inputs (sim_host/bus_ref.h): fuel used
+ * at the first tick at or after each record, and after every input frame
+ * what a module tick at that instant would answer (bus_ref_peek()), to
+ * match the module's rates whatever its tick phase. Runs until 20 ms after
+ * the capture's last frame. A silence of more than REPLAY_GAP_US
+ * (HAL_REPLAY_ECU_TAIL_US + HAL_REPLAY_ECU_GAP_US) without any frame is
+ * crossed in one jump to REPLAY_TAIL_US before the next frame, as
+ * pfe_ecu_replay crosses it (a logger whose clock jumps by years must not
+ * be ticked through): time and memory follow the frames, not the span.
  * Returns 0, or -1 out of memory.
  */
 static int ref_run(const capture_t *cap, const options_t *o, ref_run_t *run)
 {
     memset(run, 0, sizeof *run);
     static bus_ref_t ref;
-    if (bus_ref_init(&ref, (unsigned)o->vehicles, (unsigned)o->position,
-                     (uint32_t)lround(o->gap_m * 1000.0)) != 0) {
+    const pfe_vehicle_calib_t *at[PFE_MAX_VEHICLES] = {NULL};
+    for (unsigned k = 0U; (o->cal != NULL) && (k < PFE_MAX_VEHICLES); k++) {
+        at[k] = o->cal->at_set[k] ? &o->cal->at[k] : NULL;
+    }
+    if (bus_ref_init_vehicles(&ref, (unsigned)o->vehicles, (unsigned)o->position,
+                              (uint32_t)lround(o->gap_m * 1000.0),
+                              (o->cal != NULL) ? &o->cal->own : NULL, at) != 0) {
         return -1;
     }
-    size_t room_t = 0U, room_s = 0U;
+    size_t room_t = 0U, room_s = 0U, pending = 0U;
     bool started = false;
     const uint64_t end_us = cap->recs[cap->n - 1U].t_us + (2U * BUS_REF_TICK_US);
     for (size_t k = 0U; k <= cap->n; k++) {
         const bool last = k == cap->n;
-        if (!last && (pfe_j1939_source(cap->recs[k].f.id) == o->module_sa)) {
-            continue;
+        const bool input = !last && (pfe_j1939_source(cap->recs[k].f.id) != o->module_sa);
+        if (!started && !input) {
+            if (last) {
+                break;
+            }
+            continue; /* the module's frames before the first input */
         }
         const uint64_t t_us = last ? end_us : cap->recs[k].t_us;
-        if (!started && last) {
-            break;
-        }
         started = true;
+        if (ref.started && (t_us > ref.next_tick_us + REPLAY_TAIL_US + REPLAY_GAP_US)) {
+            run->ticks_skipped += bus_ref_skip_to(&ref, t_us - REPLAY_TAIL_US);
+            run->gaps_skipped++;
+        }
         while (bus_ref_due(&ref, t_us)) {
             const uint64_t tt = bus_ref_tick(&ref);
-            if (grow((void **)&run->ticks, &room_t, run->n_ticks, sizeof(tick_t)) != 0) {
+            if (keep_tick(cap, &ref, tt, &pending, run, &room_t) != 0) {
                 return -1;
             }
-            tick_t *t = &run->ticks[run->n_ticks++];
-            t->t_us = tt;
-            t->own_used = bus_ref_own_used(&ref);
-            t->platoon_used = bus_ref_platoon_used(&ref);
         }
-        if (last) {
-            break;
+        if (!input) {
+            continue; /* a module frame: the clock moved on to it */
         }
         bus_ref_input(&ref, &cap->recs[k].f, t_us);
         if (grow((void **)&run->states, &room_s, run->n_states, sizeof(state_t)) != 0) {
@@ -807,7 +947,8 @@ static bool nearest_rate(const ref_run_t *run, size_t last, uint64_t t_us, bool 
  * Spans in which the capture cannot say what the module saw or did, so that
  * its rates are not held against a reference ticking on ideal time:
  *   - input timing: SSI frames more than 30 ms apart, or CCVS1 frames less
- *     than 50 or more than 150 ms apart (a stalled or bunched replay: a
+ *     than 50 or more than 150 ms apart, each sender's apart from the
+ *     others' (a stalled or bunched replay: a
  *     bunch reaches the module later than its timestamps say, and the speed
  *     filter counts the periods between samples);
  *   - the module lost ticks: PFE_Status TickOverruns went up by
@@ -853,28 +994,34 @@ static void disturb_add(disturb_t *d, uint64_t from_us, uint64_t event_us)
 static void disturb_find(const capture_t *cap, uint8_t module_sa, disturb_t *d)
 {
     memset(d, 0, sizeof *d);
-    uint64_t last_ssi = 0U, last_ccvs1 = 0U, last_status = 0U;
-    bool have_ssi = false, have_ccvs1 = false, have_status = false;
+    /* each sender's own timing: two senders of CCVS1 interleave */
+    static uint64_t last_ssi[256], last_ccvs1[256];
+    static bool have_ssi[256], have_ccvs1[256];
+    memset(have_ssi, 0, sizeof have_ssi);
+    memset(have_ccvs1, 0, sizeof have_ccvs1);
+    uint64_t last_status = 0U;
+    bool have_status = false;
     uint32_t overruns = 0U;
     for (size_t k = 0U; k < cap->n; k++) {
         const capture_rec_t *r = &cap->recs[k];
         const uint32_t pgn = pfe_j1939_pgn(r->f.id);
-        if (pfe_j1939_source(r->f.id) != module_sa) {
+        const uint8_t sa = pfe_j1939_source(r->f.id);
+        if (sa != module_sa) {
             if (pgn == PFE_PGN_SSI) {
-                if (have_ssi && ((r->t_us - last_ssi) > SSI_GAP_MAX_US)) {
-                    disturb_add(d, last_ssi, r->t_us);
+                if (have_ssi[sa] && ((r->t_us - last_ssi[sa]) > SSI_GAP_MAX_US)) {
+                    disturb_add(d, last_ssi[sa], r->t_us);
                     d->input_events++;
                 }
-                have_ssi = true;
-                last_ssi = r->t_us;
+                have_ssi[sa] = true;
+                last_ssi[sa] = r->t_us;
             } else if (pgn == PFE_PGN_CCVS1) {
-                const uint64_t gap = r->t_us - last_ccvs1;
-                if (have_ccvs1 && ((gap < CCVS1_GAP_MIN_US) || (gap > CCVS1_GAP_MAX_US))) {
-                    disturb_add(d, last_ccvs1, r->t_us);
+                const uint64_t gap = r->t_us - last_ccvs1[sa];
+                if (have_ccvs1[sa] && ((gap < CCVS1_GAP_MIN_US) || (gap > CCVS1_GAP_MAX_US))) {
+                    disturb_add(d, last_ccvs1[sa], r->t_us);
                     d->input_events++;
                 }
-                have_ccvs1 = true;
-                last_ccvs1 = r->t_us;
+                have_ccvs1[sa] = true;
+                last_ccvs1[sa] = r->t_us;
             }
             continue;
         }
@@ -902,6 +1049,207 @@ static bool disturbed(const disturb_t *d, uint64_t t_us)
     return false;
 }
 
+/*
+ * The module's own-truck figures: since the module learned to leave LFE1
+ * and HRLFC to the engine, its estimate goes out in PFE_OwnFuel (rate,
+ * total, whether the model is identified); it sends LFE1 and HRLFC only
+ * when no other node does. A capture holding any PFE_OwnFuel from the
+ * module is judged on it, an older one on the module's LFE1 and HRLFC.
+ * Frames from other addresses are never the module's, whatever their PGN
+ * (another node's LFE1 is the engine's measured fuel rate).
+ */
+typedef enum { OWN_FROM_LFE1_HRLFC = 0, OWN_FROM_OWN_FUEL = 1 } own_source_t;
+
+static own_source_t own_source(const capture_t *cap, uint8_t module_sa)
+{
+    for (size_t k = 0U; k < cap->n; k++) {
+        const pfe_can_frame_t *f = &cap->recs[k].f;
+        if ((pfe_j1939_source(f->id) == module_sa) && (pfe_j1939_pgn(f->id) == PFE_PGN_OWN_FUEL)) {
+            return OWN_FROM_OWN_FUEL;
+        }
+    }
+    return OWN_FROM_LFE1_HRLFC;
+}
+
+typedef struct {
+    bool has_rate, rate_valid;      /* a rate frame; its rate valid */
+    double rate_l_s;
+    bool total_valid;
+    double total_l;
+    int identified;                 /* PFE_OwnFuel ModelIdentified: 1, 0, or -1 unknown */
+} own_sample_t;
+
+/* Whether f (already known to be the module's) carries an own-truck
+ * figure from src; fills *out. */
+static bool own_sample(const pfe_can_frame_t *f, own_source_t src, own_sample_t *out)
+{
+    memset(out, 0, sizeof *out);
+    out->identified = -1;
+    const uint32_t pgn = pfe_j1939_pgn(f->id);
+    if ((src == OWN_FROM_OWN_FUEL) && (pgn == PFE_PGN_OWN_FUEL)) {
+        pfe_msg_own_fuel_t m;
+        if (pfe_codec_decode_own_fuel(f, &m) < 0) {
+            return false;
+        }
+        out->has_rate = true;
+        out->rate_valid = m.fuel_rate_nl_s.state == PFE_SIG_VALID;
+        out->rate_l_s = m.fuel_rate_nl_s.value / 1e9;
+        out->total_valid = m.fuel_used_ul.state == PFE_SIG_VALID;
+        out->total_l = (double)m.fuel_used_ul.value / 1e6;
+        if (m.model_identified.state == PFE_SIG_VALID) {
+            out->identified = (m.model_identified.value != 0U) ? 1 : 0;
+        }
+        return true;
+    }
+    if ((src == OWN_FROM_LFE1_HRLFC) && (pgn == PFE_PGN_LFE1)) {
+        pfe_msg_lfe1_t m;
+        if (pfe_codec_decode_lfe1(f, &m) < 0) {
+            return false;
+        }
+        out->has_rate = true;
+        out->rate_valid = m.fuel_rate_nl_s.state == PFE_SIG_VALID;
+        out->rate_l_s = m.fuel_rate_nl_s.value / 1e9;
+        return true;
+    }
+    if ((src == OWN_FROM_LFE1_HRLFC) && (pgn == PFE_PGN_HRLFC)) {
+        pfe_msg_hrlfc_t m;
+        if (pfe_codec_decode_hrlfc(f, &m) < 0) {
+            return false;
+        }
+        out->total_valid = m.total_fuel_ul.state == PFE_SIG_VALID;
+        out->total_l = (double)m.total_fuel_ul.value / 1e6;
+        return true;
+    }
+    return false;
+}
+
+/*
+ * The module against the engine: when a node other than the module sends
+ * LFE1, that is the engine's measured fuel rate (the first such sender
+ * with a valid rate is used: a cab controller may send LFE1 not available).
+ * Each valid own-truck rate of the module is paired with the engine's
+ * latest valid rate if that is at most ENGINE_MAX_AGE_US old (three LFE1
+ * periods). Over the pairs: Pearson's r, and the integrated ratio
+ * sum(module * dt) / sum(engine * dt), dt the time since the module's
+ * previous own-truck rate frame (0 for the first, and after more than
+ * ENGINE_MAX_AGE_US). Split by PFE_OwnFuel ModelIdentified (calibrated
+ * model, identified model); without PFE_OwnFuel the split is unknown.
+ */
+#define ENGINE_MAX_AGE_US 300000U
+#define ENGINE_MIN_PAIRS 3U
+
+typedef struct {
+    size_t n;
+    double sx, sy, sxx, syy, sxy;   /* x module, y engine, L/h */
+    double ix, iy;                  /* integrals, L */
+} pairs_t;
+
+typedef struct {
+    size_t engine_frames;
+    bool have_engine;
+    uint8_t engine_sa;
+    pairs_t all, ident, calib;      /* calib: ModelIdentified 0 */
+} engine_judge_t;
+
+static void pairs_add(pairs_t *p, double x_l_h, double y_l_h, double dt_s)
+{
+    p->n++;
+    p->sx += x_l_h;
+    p->sy += y_l_h;
+    p->sxx += x_l_h * x_l_h;
+    p->syy += y_l_h * y_l_h;
+    p->sxy += x_l_h * y_l_h;
+    p->ix += x_l_h * dt_s / L_S_TO_L_H;
+    p->iy += y_l_h * dt_s / L_S_TO_L_H;
+}
+
+static void engine_judge(const capture_t *cap, uint8_t module_sa, own_source_t src,
+                         engine_judge_t *ej)
+{
+    memset(ej, 0, sizeof *ej);
+    bool engine_now = false, have_prev = false;
+    uint64_t engine_us = 0U, prev_us = 0U;
+    double engine_l_h = 0.0;
+    for (size_t k = 0U; k < cap->n; k++) {
+        const capture_rec_t *r = &cap->recs[k];
+        const uint8_t sa = pfe_j1939_source(r->f.id);
+        if (sa != module_sa) {
+            pfe_msg_lfe1_t m;
+            if ((pfe_j1939_pgn(r->f.id) == PFE_PGN_LFE1) && (pfe_codec_decode_lfe1(&r->f, &m) >= 0) &&
+                (m.fuel_rate_nl_s.state == PFE_SIG_VALID) && (!ej->have_engine || (sa == ej->engine_sa))) {
+                ej->have_engine = true;
+                ej->engine_sa = sa;
+                ej->engine_frames++;
+                engine_now = true;
+                engine_us = r->t_us;
+                engine_l_h = m.fuel_rate_nl_s.value / 1e9 * L_S_TO_L_H;
+            }
+            continue;
+        }
+        own_sample_t own;
+        if (!own_sample(&r->f, src, &own) || !own.has_rate) {
+            continue;
+        }
+        const double dt_s = (have_prev && ((r->t_us - prev_us) <= ENGINE_MAX_AGE_US))
+                                ? (double)(r->t_us - prev_us) / 1e6
+                                : 0.0;
+        have_prev = true;
+        prev_us = r->t_us;
+        if (!own.rate_valid || !engine_now || ((r->t_us - engine_us) > ENGINE_MAX_AGE_US)) {
+            continue;
+        }
+        const double x = own.rate_l_s * L_S_TO_L_H;
+        pairs_add(&ej->all, x, engine_l_h, dt_s);
+        if (own.identified == 1) {
+            pairs_add(&ej->ident, x, engine_l_h, dt_s);
+        } else if (own.identified == 0) {
+            pairs_add(&ej->calib, x, engine_l_h, dt_s);
+        }
+    }
+}
+
+/* r and the ratio of one set of pairs into quantities qr and qratio. */
+static void engine_quantities(const pairs_t *p, int qr, int qratio, const char *none)
+{
+    if (p->n < ENGINE_MIN_PAIRS) {
+        unset_q(qr, none);
+        unset_q(qratio, none);
+        return;
+    }
+    const double n = (double)p->n;
+    const double vx = p->sxx - (p->sx * p->sx / n);
+    const double vy = p->syy - (p->sy * p->sy / n);
+    if ((vx > 0.0) && (vy > 0.0)) {
+        set_q(qr, (p->sxy - (p->sx * p->sy / n)) / sqrt(vx * vy));
+    } else {
+        unset_q(qr, "a constant rate: no correlation to measure");
+    }
+    if (p->iy > 0.0) {
+        set_q(qratio, p->ix / p->iy);
+    } else {
+        unset_q(qratio, "the engine burned nothing over the pairs");
+    }
+}
+
+static void engine_set_quantities(const engine_judge_t *ej, own_source_t src)
+{
+    set_q(Q_ENGINE_FRAMES, (double)ej->engine_frames);
+    set_q(Q_ENGINE_PAIRS, (double)ej->all.n);
+    const char *none = !ej->have_engine ? "no LFE1 from a node other than the module"
+                                        : "fewer than 3 module rates with an engine rate beside them";
+    engine_quantities(&ej->all, Q_ENGINE_R, Q_ENGINE_RATIO, none);
+    if (src != OWN_FROM_OWN_FUEL) {
+        const char *unknown = "no PFE_OwnFuel from the module: identification unknown";
+        engine_quantities(&ej->ident, Q_ENGINE_R_IDENT, Q_ENGINE_RATIO_IDENT, unknown);
+        engine_quantities(&ej->calib, Q_ENGINE_R_CALIB, Q_ENGINE_RATIO_CALIB, unknown);
+        return;
+    }
+    engine_quantities(&ej->ident, Q_ENGINE_R_IDENT, Q_ENGINE_RATIO_IDENT,
+                      !ej->have_engine ? none : "fewer than 3 pairs with the model identified");
+    engine_quantities(&ej->calib, Q_ENGINE_R_CALIB, Q_ENGINE_RATIO_CALIB,
+                      !ej->have_engine ? none : "fewer than 3 pairs before identification");
+}
+
 typedef struct {
     rate_err_t own, platoon;
     totals_t own_total, platoon_total;
@@ -910,9 +1258,11 @@ typedef struct {
     size_t rate_frames, rate_disturbed; /* LFE1 and PFE_PlatoonFuel after warm-up */
     size_t input_events, overrun_events;
     size_t csv_rows;
+    plot_data_t plot;               /* what the CSV holds */
     size_t n_in, n_mod;
     uint64_t t_first_in, t_last_in;
     double distance_m;
+    own_source_t own_src;           /* where the module's own-truck figures are */
 } analysis_t;
 
 /* The module's frames against the reference run: quantities and CSV rows. */
@@ -932,6 +1282,7 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
             a->n_in++;
         }
     }
+    a->own_src = own_source(cap, (uint8_t)o->module_sa);
     const uint64_t warm_us = a->t_first_in + (uint64_t)llround(o->warmup_s * 1e6);
     static disturb_t dist;
     disturb_find(cap, (uint8_t)o->module_sa, &dist);
@@ -980,12 +1331,12 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
         const double own_used = (tk != NULL) ? tk->own_used : 0.0;
         const double platoon_used = (tk != NULL) ? tk->platoon_used : 0.0;
         const bool judged = have_tick && (r->t_us >= warm_us) && (r->t_us <= a->t_last_in);
-        if (pgn == PFE_PGN_HRLFC) {
-            pfe_msg_hrlfc_t m;
-            if ((pfe_codec_decode_hrlfc(&r->f, &m) >= 0) && (m.total_fuel_ul.state == PFE_SIG_VALID)) {
-                totals_note(&a->own_total, (double)m.total_fuel_ul.value / 1e6, own_used);
-            }
-        } else if (pgn == PFE_PGN_PLATOON_FUEL) {
+        /* the own truck's figures: PFE_OwnFuel, else LFE1 and HRLFC */
+        own_sample_t own;
+        if (own_sample(&r->f, a->own_src, &own) && own.total_valid) {
+            totals_note(&a->own_total, own.total_l, own_used);
+        }
+        if (pgn == PFE_PGN_PLATOON_FUEL) {
             pfe_msg_platoon_fuel_t m;
             if (pfe_codec_decode_platoon_fuel(&r->f, &m) >= 0) {
                 if (m.fuel_used_ul.state == PFE_SIG_VALID) {
@@ -1019,13 +1370,9 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
                                          (m.mode.value == PFE_MODE_NORMAL)) ? 1U : 0U;
                 }
             }
-        } else if (pgn == PFE_PGN_LFE1) {
-            pfe_msg_lfe1_t m;
-            if (pfe_codec_decode_lfe1(&r->f, &m) < 0) {
-                continue;
-            }
-            const bool valid = m.fuel_rate_nl_s.state == PFE_SIG_VALID;
-            const double got = m.fuel_rate_nl_s.value / 1e9;
+        } else if (own.has_rate) {
+            const bool valid = own.rate_valid;
+            const double got = own.rate_l_s;
             if (judged) {
                 /* Not available is right where the reference has no
                  * estimate either; a rate is compared with 0 there. */
@@ -1043,23 +1390,27 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
                 }
             }
             if (have_tick && (r->t_us <= a->t_last_in)) {
+                const bool have[CSV_COLS] = {have_speed, have_grade, valid, run->states[st].valid,
+                                             a->own_total.have, a->own_total.have};
                 fprintf(csv, "%.3f", t_s);
-                csv_value(csv, have_speed, speed_kmh, 3);
-                csv_value(csv, have_grade, grade_pct, 4);
-                csv_value(csv, valid, got * L_S_TO_L_H, 2);
-                csv_value(csv, run->states[st].valid, run->states[st].own_rate * L_S_TO_L_H, 3);
-                csv_value(csv, a->own_total.have, a->own_total.last - a->own_total.first, 3);
-                csv_value(csv, a->own_total.have, own_used - a->own_total.ref_first, 5);
+                csv_value(csv, have[0], speed_kmh, 3);
+                csv_value(csv, have[1], grade_pct, 4);
+                csv_value(csv, have[2], got * L_S_TO_L_H, 2);
+                csv_value(csv, have[3], run->states[st].own_rate * L_S_TO_L_H, 3);
+                csv_value(csv, have[4], a->own_total.last - a->own_total.first, 3);
+                csv_value(csv, have[5], own_used - a->own_total.ref_first, 5);
                 fputc('\n', csv);
                 a->csv_rows++;
+                plot_note(&a->plot, t_s, have);
             }
         }
     }
     free(dist.spans);
 }
 
-static void set_quantities(const analysis_t *a, const capture_t *cap)
+static void set_quantities(const analysis_t *a, const capture_t *cap, const ref_run_t *run)
 {
+    set_q(Q_GAPS, (double)run->gaps_skipped);
     set_q(Q_INPUT_FRAMES, (double)a->n_in);
     set_q(Q_MODULE_FRAMES, (double)a->n_mod);
     set_q(Q_CAPTURE_DROPPED, (double)cap->dropped);
@@ -1075,19 +1426,19 @@ static void set_quantities(const analysis_t *a, const capture_t *cap)
     if (a->rate_frames > 0U) {
         set_q(Q_DISTURBED_PCT, 100.0 * (double)a->rate_disturbed / (double)a->rate_frames);
     } else {
-        unset_q(Q_DISTURBED_PCT, "no LFE1 or PFE_PlatoonFuel frame after warm-up");
+        unset_q(Q_DISTURBED_PCT, "no own-truck rate (PFE_OwnFuel, LFE1) or PFE_PlatoonFuel frame after warm-up");
     }
     set_q(Q_LFE1, (double)a->lfe1);
     set_q(Q_LFE1_NA, (double)a->lfe1_na);
     if (a->lfe1 > a->lfe1_na) {
         set_q(Q_MAX_RATE_LH, a->own.worst_l_h);
     } else {
-        unset_q(Q_MAX_RATE_LH, "no LFE1 fuel rate judged");
+        unset_q(Q_MAX_RATE_LH, "no own-truck fuel rate judged");
     }
     if (a->own.judged_pct > 0U) {
         set_q(Q_MAX_RATE_PCT, a->own.worst_pct);
     } else {
-        unset_q(Q_MAX_RATE_PCT, "no LFE1 fuel rate judged where the reference is above the floor");
+        unset_q(Q_MAX_RATE_PCT, "no own-truck fuel rate judged where the reference is above the floor");
     }
     if (a->platoon.judged_pct > 0U) {
         set_q(Q_MAX_PRATE_PCT, a->platoon.worst_pct);
@@ -1100,7 +1451,8 @@ static void set_quantities(const analysis_t *a, const capture_t *cap)
         const totals_t *t;
         int m, r, e;
         const char *none;
-    } tot[2] = {{&a->own_total, Q_TOTAL, Q_REF_TOTAL, Q_TOTAL_ERR, "no HRLFC total from the module"},
+    } tot[2] = {{&a->own_total, Q_TOTAL, Q_REF_TOTAL, Q_TOTAL_ERR,
+                 "no own-truck total (PFE_OwnFuel, HRLFC) from the module"},
                 {&a->platoon_total, Q_PTOTAL, Q_REF_PTOTAL, Q_PTOTAL_ERR,
                  "no PFE_PlatoonFuel total from the module"}};
     for (int k = 0; k < 2; k++) {
@@ -1148,6 +1500,23 @@ static const char *fmt_q(int k, int decimals, const char *unit, char *buf, size_
     return buf;
 }
 
+static void engine_print(const engine_judge_t *ej)
+{
+    char b1[64], b2[64], b3[64], b4[64], b5[64], b6[64];
+    if (!ej->have_engine) {
+        printf("  engine's LFE1: none on the bus (no LFE1 from a node other than the module)\n");
+        return;
+    }
+    printf("  against the engine's LFE1 (SA 0x%02X, %zu frames): %zu rates paired; r %s, "
+           "integrated ratio %s; model identified: r %s, ratio %s (%zu); calibrated: r %s, "
+           "ratio %s (%zu)\n", ej->engine_sa, ej->engine_frames, ej->all.n,
+           fmt_q(Q_ENGINE_R, 4, "", b1, sizeof b1), fmt_q(Q_ENGINE_RATIO, 4, "", b2, sizeof b2),
+           fmt_q(Q_ENGINE_R_IDENT, 4, "", b3, sizeof b3),
+           fmt_q(Q_ENGINE_RATIO_IDENT, 4, "", b4, sizeof b4), ej->ident.n,
+           fmt_q(Q_ENGINE_R_CALIB, 4, "", b5, sizeof b5),
+           fmt_q(Q_ENGINE_RATIO_CALIB, 4, "", b6, sizeof b6), ej->calib.n);
+}
+
 static void print_summary(const options_t *o, const capture_t *cap, const analysis_t *a,
                           const ref_run_t *ref)
 {
@@ -1164,6 +1533,11 @@ static void print_summary(const options_t *o, const capture_t *cap, const analys
         printf("; the recorder dropped %lu", cap->dropped);
     }
     printf("\n");
+    if (ref->gaps_skipped > 0U) {
+        printf("  %zu silence%s of over %.0f s crossed in one jump (%llu ticks, as pfe_ecu_replay "
+               "skips them)\n", ref->gaps_skipped, (ref->gaps_skipped == 1U) ? "" : "s",
+               (double)(REPLAY_TAIL_US + REPLAY_GAP_US) / 1e6, (unsigned long long)ref->ticks_skipped);
+    }
     printf("  platoon %u truck%s, own position %u, gap %.2f m (%s)\n", ref->n_vehicles,
            (ref->n_vehicles == 1U) ? "" : "s", ref->position, ref->gap_mm / 1000.0,
            ref->configured ? "from PFE_PlatoonConfig" : "default: no PFE_PlatoonConfig");
@@ -1172,13 +1546,15 @@ static void print_summary(const options_t *o, const capture_t *cap, const analys
     printf("  %-34s %14s\n", "distance", fmt_q(Q_DISTANCE, 3, "km", b1, sizeof b1));
     printf("  %-34s %14s\n", "duration", fmt_q(Q_DURATION, 2, "s", b1, sizeof b1));
     printf("  %-34s %14s\n", "mean speed", fmt_q(Q_MEAN_SPEED, 2, "km/h", b1, sizeof b1));
-    printf("  %-34s %14s %14s %10s\n", "own truck fuel used (HRLFC)",
+    const bool of = a->own_src == OWN_FROM_OWN_FUEL;
+    printf("  %-34s %14s %14s %10s\n", of ? "own truck fuel used (PFE_OwnFuel)"
+                                         : "own truck fuel used (HRLFC)",
            fmt_q(Q_TOTAL, 3, "L", b1, sizeof b1), fmt_q(Q_REF_TOTAL, 4, "L", b2, sizeof b2),
            fmt_q(Q_TOTAL_ERR, 3, "%", b3, sizeof b3));
     printf("  %-34s %14s %14s %10s\n", "platoon fuel used (PFE_PlatoonFuel)",
            fmt_q(Q_PTOTAL, 3, "L", b1, sizeof b1), fmt_q(Q_REF_PTOTAL, 4, "L", b2, sizeof b2),
            fmt_q(Q_PTOTAL_ERR, 3, "%", b3, sizeof b3));
-    printf("  %-34s %29s %10s", "largest fuel rate error (LFE1)",
+    printf("  %-34s %29s %10s", of ? "largest own rate error (OwnFuel)" : "largest fuel rate error (LFE1)",
            fmt_q(Q_MAX_RATE_LH, 3, "L/h", b1, sizeof b1), fmt_q(Q_MAX_RATE_PCT, 3, "%", b2, sizeof b2));
     if (g_q[Q_MAX_RATE_PCT].measured) {
         printf("  at %.2f s", a->own.worst_pct_t);
@@ -1187,9 +1563,9 @@ static void print_summary(const options_t *o, const capture_t *cap, const analys
     printf("  %-34s %29s %10s\n", "largest platoon fuel rate error",
            fmt_q(Q_MAX_PRATE_LH, 3, "L/h", b1, sizeof b1), fmt_q(Q_MAX_PRATE_PCT, 3, "%", b2, sizeof b2));
     printf("\n");
-    printf("  LFE1 judged: %.0f (%.0f not available), from %.1f s after the first input to the "
+    printf("  %s judged: %.0f (%.0f not available), from %.1f s after the first input to the "
            "last; relative errors where the reference is at least %.1f L/h (%zu frames)\n",
-           g_q[Q_LFE1].value, g_q[Q_LFE1_NA].value, o->warmup_s, o->floor_l_h, a->own.judged_pct);
+           of ? "PFE_OwnFuel" : "LFE1", g_q[Q_LFE1].value, g_q[Q_LFE1_NA].value, o->warmup_s, o->floor_l_h, a->own.judged_pct);
     printf("  rates not judged: %zu of %zu (%s), within %.0f s after %zu input timing events and "
            "%zu PFE_Status reports of %u or more lost ticks\n", a->rate_disturbed, a->rate_frames,
            fmt_q(Q_DISTURBED_PCT, 1, "%", b1, sizeof b1), DISTURB_RECOVERY_US / 1e6, a->input_events,
@@ -1202,10 +1578,18 @@ static void print_summary(const options_t *o, const capture_t *cap, const analys
 int main(int argc, char **argv)
 {
     static options_t o;
+    static truck_cal_t cal;
+    bool have_cal = false;
+    char cal_err[TRUCK_CAL_ERR_MAX];
+    if (truck_cal_take_arg(&argc, argv, &cal, &have_cal, cal_err, sizeof cal_err) != 0) {
+        fprintf(stderr, "run_report: %s\n", cal_err);
+        return 2;
+    }
     const int prc = parse_args(argc, argv, &o);
     if (prc != 0) {
         return prc;
     }
+    o.cal = have_cal ? &cal : NULL;
     static expect_t ex[MAX_EXPECT];
     int n_ex = 0;
     if (o.expect != NULL) {
@@ -1249,8 +1633,33 @@ int main(int argc, char **argv)
     static analysis_t a;
     analyse(&cap, &o, &run, csv, &a);
     int rc = close_out(csv, csv_path);
-    set_quantities(&a, &cap);
+    set_quantities(&a, &cap, &run);
+    static engine_judge_t ej;
+    engine_judge(&cap, (uint8_t)o.module_sa, a.own_src, &ej);
+    engine_set_quantities(&ej, a.own_src);
     print_summary(&o, &cap, &a, &run);
+    static pj_result_t pj;
+    if (prediction_judge_run(&cap, (uint8_t)o.module_sa, (unsigned)o.vehicles, (unsigned)o.position,
+                             (uint32_t)lround(o.gap_m * 1000.0), &pj) != 0) {
+        fprintf(stderr, "run_report: out of memory\n");
+        rc = -1;
+    }
+    for (int k = 0; k < PJ_Q_COUNT; k++) {
+        double v;
+        const char *why;
+        if (prediction_judge_value(&pj, k, &v, &why)) {
+            set_q(Q_COUNT + k, v);
+        } else {
+            unset_q(Q_COUNT + k, why);
+        }
+    }
+    prediction_judge_print(&pj);
+    char pj_path[PATH_MAX_LEN];
+    snprintf(pj_path, sizeof pj_path, "%s.prediction.csv", o.prefix);
+    rc |= prediction_judge_write_csv(&pj, pj_path);
+    const bool pj_plot = pj.n_rows > 0U;
+    prediction_judge_free(&pj);
+    engine_print(&ej);
     capture_free(&cap);
     free(run.ticks);
     free(run.states);
@@ -1259,7 +1668,7 @@ int main(int argc, char **argv)
     if (mf == NULL) {
         return 2;
     }
-    for (int k = 0; k < Q_COUNT; k++) {
+    for (int k = 0; k < Q_ALL; k++) {
         if (g_q[k].measured) {
             fprintf(mf, "%s %.6g\n", g_q[k].name, g_q[k].value);
         } else {
@@ -1267,9 +1676,9 @@ int main(int argc, char **argv)
         }
     }
     rc |= close_out(mf, m_path);
-    printf("\n  CSV:     %s\n  metrics: %s\n", csv_path, m_path);
+    printf("\n  CSV:     %s\n  metrics: %s\n  predictions: %s\n", csv_path, m_path, pj_path);
     if (o.plot && (a.csv_rows == 0U)) {
-        printf("  plot:    none, no LFE1 frame from the module to plot\n");
+        printf("  plot:    none, no own-truck rate frame (PFE_OwnFuel, LFE1) from the module to plot\n");
     } else if (o.plot) {
         snprintf(gp_path, sizeof gp_path, "%s.gp", o.prefix);
         snprintf(png_path, sizeof png_path, "%s.png", o.prefix);
@@ -1278,7 +1687,7 @@ int main(int argc, char **argv)
         snprintf(title, sizeof title, "%s: %.2f km, %.0f s; module (0x%02lX) against the reference",
                  (o.title != NULL) ? o.title : ((base != NULL) ? base + 1 : o.capture),
                  g_q[Q_DISTANCE].value, g_q[Q_DURATION].value, o.module_sa);
-        if ((write_plot_script(gp_path, csv_path, png_path, title) != 0) ||
+        if ((write_plot_script(gp_path, csv_path, png_path, title, &a.plot, pj_plot ? pj_path : NULL) != 0) ||
             (run_gnuplot(o.gnuplot, gp_path) != 0)) {
             rc = -1;
         } else {

@@ -6,12 +6,16 @@
  *
  * The same run as the host's pfe_ecu_replay (hal/replay/hal_replay_ecu.h,
  * same options): LOG is read and OUT written on the host through
- * semihosting (hal/mps2/semihost.h), the ECU ticks in the log's time. Prints
+ * semihosting (hal/mps2/semihost.h), the ECU ticks in the log's time; LOG
+ * is candump -L or candump's printed output with timestamps (hal/replay's
+ * own parser, held to the host's by tests/replay/log_vectors.h). Prints
  * the run's summary line, then the instructions (QEMU -icount, 40 a count)
  * of the ECU's tick (hal_ecu_loop_step(): receive, decode, estimate,
  * encode, send, NVM) and of feeding the bus (reading and parsing the log,
  * writing the record) apart, mean and worst per 10 ms:
  *   "m4: ticks K ecu_tick_insn_mean M ecu_tick_insn_max X feed_insn_mean F feed_insn_max G"
+ * The truck calibration is compiled in (hal/mps2/image_calib.h): the
+ * image built with CALIB=FILE runs as pfe_ecu_replay --calib FILE.
  * Exit status as pfe_ecu_replay: 0; 1 bad log lines or a failed record; 2
  * bad arguments, an unreadable log or one without frames.
  */
@@ -19,6 +23,7 @@
 #include <stdint.h>
 
 #include "hal/mps2/icount.h"
+#include "hal/mps2/image_calib.h"
 #include "hal/mps2/semihost.h"
 #include "hal/replay/hal_replay_ecu.h"
 
@@ -91,6 +96,8 @@ int main(void)
         say("usage: pfe_ecu_mps2 ", HAL_REPLAY_ECU_USAGE, "");
         return (arc > 0) ? 0 : 2;
     }
+    /* The truck's calibration is compiled in (make firmware CALIB=FILE). */
+    image_calib_apply(&args.cfg);
     static int32_t in;
     static int32_t out = -1;
     in = hal_mps2_file_open(args.log_path, HAL_MPS2_FILE_READ);
@@ -110,7 +117,20 @@ int main(void)
                                        &out, &args.cfg);
     const hal_replay_stats_t *st = hal_replay_stats(&s_run.bus);
     if (rc == HAL_ENODEV) {
-        say(args.log_path, ": no classic CAN frame in the log", "");
+        hal_mps2_write_str("pfe_ecu_mps2: ");
+        hal_mps2_write_str(args.log_path);
+        hal_mps2_write_str(": no classic CAN frame in the log (");
+        hal_mps2_write_u32(st->lines);
+        hal_mps2_write_str(" lines, ");
+        hal_mps2_write_u32(st->bad_lines);
+        hal_mps2_write_str(" bad");
+        if (st->bad_lines > 0U) {
+            hal_mps2_write_str("; the first, line ");
+            hal_mps2_write_u32(st->first_bad_line);
+            hal_mps2_write_str(": ");
+            hal_mps2_write_str(hal_replay_reason_text(st->first_bad_reason));
+        }
+        hal_mps2_write_str(")\n");
         status = 2;
     } else if (rc != 0) {
         say("the ECU refuses this configuration", "", "");

@@ -132,102 +132,217 @@ static bool is_digit(char c)
 
 typedef enum { LINE_FRAME, LINE_EMPTY, LINE_NOT_CLASSIC, LINE_BAD } line_kind_t;
 
-/* Parses one line (NUL-terminated, no newline). LINE_FRAME fills *f, *t_us
- * and, for the first frame, the record interface name. */
-static line_kind_t parse_line(hal_replay_bus_t *bus, const char *s, pfe_can_frame_t *f,
-                              uint64_t *t_us, hal_replay_reason_t *why)
+static bool is_blank(char c)
 {
-    size_t n = strlen(s);
-    if ((n > 0U) && (s[n - 1U] == '\r')) {
-        n--;
+    return (c == ' ') || (c == '\t');
+}
+
+/* The first index at or after i that is not a blank (n at the end). */
+static size_t skip_blanks(const char *s, size_t i, size_t n)
+{
+    size_t k = i;
+    while ((k < n) && is_blank(s[k])) {
+        k++;
     }
-    if (n == 0U) {
-        return LINE_EMPTY;
+    return k;
+}
+
+/* The first index at or after i that is a blank (n at the end). */
+static size_t token_end(const char *s, size_t i, size_t n)
+{
+    size_t k = i;
+    while ((k < n) && !is_blank(s[k])) {
+        k++;
     }
-    size_t i = 0U;
-    *why = HAL_REPLAY_BAD_SYNTAX;
-    if (s[i] != '(') {
-        return LINE_BAD;
+    return k;
+}
+
+/* Whether the len characters at a are those of b (no memcmp: MISRA 21.14). */
+static bool same_chars(const char *a, const char *b, size_t len)
+{
+    for (size_t k = 0U; k < len; k++) {
+        if (a[k] != b[k]) {
+            return false;
+        }
     }
-    i++;
-    *why = HAL_REPLAY_BAD_TIME;
+    return true;
+}
+
+/* Whether the token at i (up to a blank or the end) is word. */
+static bool token_is(const char *s, size_t i, size_t n, const char *word)
+{
+    const size_t len = strlen(word);
+    return ((i + len) <= n) && same_chars(&s[i], word, len) &&
+           (((i + len) == n) || is_blank(s[i + len]));
+}
+
+static bool starts_with(const char *s, size_t i, size_t n, const char *prefix)
+{
+    const size_t len = strlen(prefix);
+    return ((i + len) <= n) && same_chars(&s[i], prefix, len);
+}
+
+/* count decimal digits at s[*i] into *v; false if any is missing. */
+static bool digits_n(const char *s, size_t *i, size_t n, uint32_t count, uint32_t *v)
+{
+    uint32_t x = 0U;
+    for (uint32_t k = 0U; k < count; k++) {
+        if ((*i >= n) || !is_digit(s[*i])) {
+            return false;
+        }
+        x = (x * 10U) + (uint32_t)(s[*i] - '0');
+        (*i)++;
+    }
+    *v = x;
+    return true;
+}
+
+/* Days from 1970-01-01 to y-m-d of the proleptic Gregorian calendar, for
+ * y >= 1970 (the civil-from-days inverse by eras of 400 years). */
+static uint64_t days_from_civil(uint32_t y, uint32_t m, uint32_t d)
+{
+    const uint32_t yy = (m <= 2U) ? (y - 1U) : y;
+    const uint32_t era = yy / 400U;
+    const uint32_t yoe = yy - (era * 400U);                         /* 0 .. 399 */
+    const uint32_t mp = (m > 2U) ? (m - 3U) : (m + 9U);            /* March = 0 */
+    const uint32_t doy = ((((153U * mp) + 2U) / 5U) + d) - 1U;     /* 0 .. 365 */
+    const uint32_t doe = (((yoe * 365U) + (yoe / 4U)) - (yoe / 100U)) + doy;
+    return (((uint64_t)era * 146097U) + doe) - 719468U;
+}
+
+/* "SECONDS.FRACTION" at s[*i]: 1 to MAX_SECONDS_DIGITS digits, then 6 or 9
+ * fraction digits (nine truncated to microseconds). */
+static bool parse_seconds(const char *s, size_t *i, size_t n, uint64_t *us, uint32_t *sec_digits)
+{
     uint64_t sec = 0U;
     uint32_t digits = 0U;
-    while ((i < n) && is_digit(s[i])) {
+    while ((*i < n) && is_digit(s[*i])) {
         if (digits == MAX_SECONDS_DIGITS) {
-            return LINE_BAD;
+            return false;
         }
-        sec = (sec * 10U) + (uint64_t)(s[i] - '0');
+        sec = (sec * 10U) + (uint64_t)(s[*i] - '0');
         digits++;
-        i++;
+        (*i)++;
     }
-    if ((digits == 0U) || (i >= n) || (s[i] != '.')) {
-        return LINE_BAD;
+    if ((digits == 0U) || (*i >= n) || (s[*i] != '.')) {
+        return false;
     }
-    i++;
+    (*i)++;
     uint32_t frac = 0U;
-    digits = 0U;
-    while ((i < n) && is_digit(s[i]) && (digits < 9U)) {
-        frac = (frac * 10U) + (uint32_t)(s[i] - '0');
-        digits++;
-        i++;
+    uint32_t fdigits = 0U;
+    while ((*i < n) && is_digit(s[*i]) && (fdigits < 9U)) {
+        frac = (frac * 10U) + (uint32_t)(s[*i] - '0');
+        fdigits++;
+        (*i)++;
     }
-    if (((digits != 6U) && (digits != 9U)) || (i >= n) || (s[i] != ')')) {
-        return LINE_BAD;
+    if ((fdigits != 6U) && (fdigits != 9U)) {
+        return false;
     }
-    const uint32_t usec = (digits == 9U) ? (frac / 1000U) : frac;
-    i++;
-    *why = HAL_REPLAY_BAD_SYNTAX;
-    if ((i >= n) || (s[i] != ' ')) {
-        return LINE_BAD;
+    *us = (sec * 1000000U) + ((fdigits == 9U) ? (frac / 1000U) : frac);
+    *sec_digits = digits;
+    return true;
+}
+
+/* candump -t A's "YYYY-MM-DD HH:MM:SS.FRACTION", read as UTC (the output
+ * does not say the recording machine's zone; intervals are exact). */
+static bool parse_date(const char *s, size_t *i, size_t n, uint64_t *us)
+{
+    uint32_t y = 0U;
+    uint32_t mo = 0U;
+    uint32_t d = 0U;
+    uint32_t h = 0U;
+    uint32_t mi = 0U;
+    uint32_t sd = 0U;
+    uint64_t sec_us = 0U;
+    bool ok = digits_n(s, i, n, 4U, &y) && (*i < n) && (s[*i] == '-');
+    if (ok) {
+        (*i)++;
+        ok = digits_n(s, i, n, 2U, &mo) && (*i < n) && (s[*i] == '-');
     }
-    i++;
-    const size_t if_start = i;
-    while ((i < n) && (s[i] != ' ') && ((unsigned char)s[i] > 0x20U) && ((unsigned char)s[i] < 0x7FU)) {
-        i++;
+    if (ok) {
+        (*i)++;
+        ok = digits_n(s, i, n, 2U, &d) && (*i < n) && (s[*i] == ' ');
     }
-    const size_t if_len = i - if_start;
-    if ((if_len == 0U) || (if_len > HAL_REPLAY_IFNAME_MAX) || (i >= n) || (s[i] != ' ')) {
-        return LINE_BAD;
+    if (ok) {
+        (*i)++;
+        ok = digits_n(s, i, n, 2U, &h) && (*i < n) && (s[*i] == ':');
     }
-    i++;
+    if (ok) {
+        (*i)++;
+        ok = digits_n(s, i, n, 2U, &mi) && (*i < n) && (s[*i] == ':');
+    }
+    if (ok) {
+        (*i)++;
+        ok = parse_seconds(s, i, n, &sec_us, &sd) && (sd == 2U) && (sec_us < 61000000U);
+    }
+    if (!ok || (y < 1970U) || (mo < 1U) || (mo > 12U) || (d < 1U) || (d > 31U) || (h > 23U) ||
+        (mi > 59U)) {
+        return false;
+    }
+    const uint64_t s_of_day = ((uint64_t)h * 3600U) + ((uint64_t)mi * 60U);
+    *us = (((days_from_civil(y, mo, d) * 86400U) + s_of_day) * 1000000U) + sec_us;
+    return true;
+}
+
+/* A hex id of 3 digits (11-bit, up to 7FF) or 8 (29-bit, or an error frame
+ * with CAN_ERR_FLAG) in s[from, to): LINE_FRAME with *id (| PFE_CAN_EFF_FLAG),
+ * LINE_NOT_CLASSIC for an error frame, or LINE_BAD. */
+static line_kind_t parse_id(const char *s, size_t from, size_t to, uint32_t *id,
+                            hal_replay_reason_t *why)
+{
+    const size_t len = to - from;
+    uint32_t v = 0U;
     *why = HAL_REPLAY_BAD_ID;
-    uint32_t id = 0U;
-    const size_t id_start = i;
-    while ((i < n) && (s[i] != '#')) {
-        const int h = hex_digit(s[i]);
-        if ((h < 0) || ((i - id_start) >= 8U)) {
+    if ((len != 3U) && (len != 8U)) {
+        return LINE_BAD;
+    }
+    for (size_t k = from; k < to; k++) {
+        const int h = hex_digit(s[k]);
+        if (h < 0) {
             return LINE_BAD;
         }
-        id = (id << 4) | (uint32_t)h;
-        i++;
+        v = (v << 4) | (uint32_t)h;
     }
-    const size_t id_len = i - id_start;
-    if (i >= n) {
-        *why = (id_len == 0U) ? HAL_REPLAY_BAD_SYNTAX : HAL_REPLAY_BAD_ID;
-        return LINE_BAD;
-    }
-    if ((id_len != 3U) && (id_len != 8U)) {
-        return LINE_BAD;
-    }
-    i++; /* '#' */
-    if ((id_len == 8U) && ((id & CAN_ERR_FLAG_ID) != 0U) && ((id & 0xC0000000UL) == 0U)) {
+    if ((len == 8U) && ((v & CAN_ERR_FLAG_ID) != 0U) && ((v & 0xC0000000UL) == 0U)) {
         return LINE_NOT_CLASSIC; /* error frame */
     }
-    if (((id_len == 3U) && (id > 0x7FFU)) || ((id_len == 8U) && (id > PFE_CAN_ID_MASK))) {
+    if (((len == 3U) && (v > 0x7FFU)) || ((len == 8U) && (v > PFE_CAN_ID_MASK))) {
         return LINE_BAD;
     }
-    if ((i < n) && ((s[i] == '#') || (s[i] == 'R') || (s[i] == 'r'))) {
+    *id = (len == 8U) ? (v | PFE_CAN_EFF_FLAG) : v;
+    return LINE_FRAME;
+}
+
+/* candump -L's frame "ID#DATA" at s[*i] (and its remote, FD and error
+ * forms, skipped), then an optional direction R or T. */
+static line_kind_t parse_compact(const char *s, size_t i, size_t n, pfe_can_frame_t *f,
+                                 hal_replay_reason_t *why)
+{
+    size_t k = i;
+    while ((k < n) && (s[k] != '#')) {
+        k++;
+    }
+    uint32_t id = 0U;
+    const line_kind_t idk = parse_id(s, i, k, &id, why);
+    if (idk != LINE_FRAME) {
+        return idk;
+    }
+    k++; /* '#' */
+    if ((k < n) && ((s[k] == '#') || (s[k] == 'R') || (s[k] == 'r'))) {
         return LINE_NOT_CLASSIC; /* CAN FD or remote */
     }
     *why = HAL_REPLAY_BAD_DATA;
     uint32_t len = 0U;
-    while ((i < n) && (s[i] != ' ')) {
-        if ((i + 1U) >= n) {
+    while ((k < n) && !is_blank(s[k])) {
+        if (s[k] == '.') {
+            k++;
+            continue;
+        }
+        if ((k + 1U) >= n) {
             return LINE_BAD; /* odd number of digits */
         }
-        const int hi = hex_digit(s[i]);
-        const int lo = hex_digit(s[i + 1U]);
+        const int hi = hex_digit(s[k]);
+        const int lo = hex_digit(s[k + 1U]);
         if ((hi < 0) || (lo < 0)) {
             return LINE_BAD;
         }
@@ -237,18 +352,167 @@ static line_kind_t parse_line(hal_replay_bus_t *bus, const char *s, pfe_can_fram
         }
         f->data[len] = (uint8_t)(((uint32_t)hi << 4) | (uint32_t)lo);
         len++;
-        i += 2U;
+        k += 2U;
     }
-    /* candump may end a line with its direction flag: " R" or " T". */
-    if ((i < n) && !(((n - i) == 2U) && ((s[i + 1U] == 'R') || (s[i + 1U] == 'T')))) {
+    k = skip_blanks(s, k, n);
+    /* candump -x may end a line with its direction flag: " R" or " T". */
+    if ((k < n) && (token_is(s, k, n, "R") || token_is(s, k, n, "T"))) {
+        k = skip_blanks(s, k + 1U, n);
+    }
+    if (k < n) {
+        *why = HAL_REPLAY_BAD_SYNTAX;
         return LINE_BAD;
     }
-    f->id = (id_len == 8U) ? (id | PFE_CAN_EFF_FLAG) : id;
+    f->id = id;
     f->dlc = (uint8_t)len;
-    for (uint32_t k = len; k < PFE_CAN_MAX_DLC; k++) {
+    return LINE_FRAME;
+}
+
+/* candump's printed frame at s[i]: [RX|TX B|- E|-] ID [LEN] XX XX ...
+ * [ERRORFRAME] ['ascii'], or "[LEN] remote request"; a two-digit length
+ * is CAN FD. */
+static line_kind_t parse_printed(const char *s, size_t i, size_t n, pfe_can_frame_t *f,
+                                 hal_replay_reason_t *why)
+{
+    size_t k = i;
+    *why = HAL_REPLAY_BAD_SYNTAX;
+    if (token_is(s, k, n, "RX") || token_is(s, k, n, "TX")) {
+        k = skip_blanks(s, k + 2U, n);
+        if (!(token_is(s, k, n, "-") || token_is(s, k, n, "B"))) {
+            return LINE_BAD;
+        }
+        const bool brs = s[k] == 'B';
+        k = skip_blanks(s, k + 1U, n);
+        if (!(token_is(s, k, n, "-") || token_is(s, k, n, "E"))) {
+            return LINE_BAD;
+        }
+        k = skip_blanks(s, k + 1U, n);
+        if (brs) {
+            return LINE_NOT_CLASSIC; /* bit rate switch: CAN FD */
+        }
+    }
+    const size_t id_end = token_end(s, k, n);
+    uint32_t id = 0U;
+    const line_kind_t idk = parse_id(s, k, id_end, &id, why);
+    if (idk == LINE_BAD) {
+        return LINE_BAD;
+    }
+    k = skip_blanks(s, id_end, n);
+    *why = HAL_REPLAY_BAD_SYNTAX;
+    if ((k >= n) || (s[k] != '[')) {
+        return LINE_BAD;
+    }
+    k++;
+    uint32_t len = 0U;
+    uint32_t ld = 0U;
+    while ((k < n) && is_digit(s[k]) && (ld < 3U)) {
+        len = (len * 10U) + (uint32_t)(s[k] - '0');
+        ld++;
+        k++;
+    }
+    if ((ld == 0U) || (ld > 2U) || (k >= n) || (s[k] != ']')) {
+        *why = (ld > 2U) ? HAL_REPLAY_BAD_LENGTH : HAL_REPLAY_BAD_SYNTAX;
+        return LINE_BAD;
+    }
+    k = skip_blanks(s, k + 1U, n);
+    if (token_is(s, k, n, "remote")) {
+        k = skip_blanks(s, k + 6U, n);
+        if (!token_is(s, k, n, "request") || (len > PFE_CAN_MAX_DLC) ||
+            (skip_blanks(s, k + 7U, n) < n)) {
+            *why = (len > PFE_CAN_MAX_DLC) ? HAL_REPLAY_BAD_LENGTH : HAL_REPLAY_BAD_SYNTAX;
+            return LINE_BAD;
+        }
+        return LINE_NOT_CLASSIC;
+    }
+    if ((ld == 2U) || (idk == LINE_NOT_CLASSIC)) {
+        return LINE_NOT_CLASSIC; /* CAN FD, or an error frame */
+    }
+    if (len > PFE_CAN_MAX_DLC) {
+        *why = HAL_REPLAY_BAD_LENGTH;
+        return LINE_BAD;
+    }
+    *why = HAL_REPLAY_BAD_DATA;
+    for (uint32_t b = 0U; b < len; b++) {
+        if (((k + 2U) > n) || (((k + 2U) < n) && !is_blank(s[k + 2U]))) {
+            return LINE_BAD;
+        }
+        const int hi = hex_digit(s[k]);
+        const int lo = hex_digit(s[k + 1U]);
+        if ((hi < 0) || (lo < 0)) {
+            return LINE_BAD;
+        }
+        f->data[b] = (uint8_t)(((uint32_t)hi << 4) | (uint32_t)lo);
+        k = skip_blanks(s, k + 2U, n);
+    }
+    /* -a's ASCII column follows in quotes; anything else is an error
+     * (more bytes than the length says, or text). */
+    if ((k < n) && (s[k] != '\'') && (s[k] != '`')) {
+        *why = ((hex_digit(s[k]) >= 0) && ((k + 1U) < n) && (hex_digit(s[k + 1U]) >= 0))
+                   ? HAL_REPLAY_BAD_LENGTH
+                   : HAL_REPLAY_BAD_SYNTAX;
+        return LINE_BAD;
+    }
+    f->id = id;
+    f->dlc = (uint8_t)len;
+    return LINE_FRAME;
+}
+
+/* Parses one line (NUL-terminated, no newline): candump -L's log line or
+ * candump's printed line with a timestamp. LINE_FRAME fills *f, *t_us and,
+ * for the first frame, the record interface name. */
+static line_kind_t parse_line(hal_replay_bus_t *bus, const char *s, pfe_can_frame_t *f,
+                              uint64_t *t_us, hal_replay_reason_t *why)
+{
+    size_t n = strlen(s);
+    if ((n > 0U) && (s[n - 1U] == '\r')) {
+        n--;
+    }
+    size_t i = skip_blanks(s, 0U, n);
+    if ((i == n) || (s[i] == '#') || starts_with(s, i, n, "//") ||
+        starts_with(s, i, n, "DROPCOUNT:") || ((s[0] == '\t') && (s[i] != '('))) {
+        return LINE_EMPTY; /* blank, comment, candump's drop report, -e's detail lines */
+    }
+    if (s[i] != '(') {
+        /* candump's printed output without -t has no time to replay at */
+        *why = (memchr(s, '[', n) != NULL) ? HAL_REPLAY_BAD_NO_TIME : HAL_REPLAY_BAD_SYNTAX;
+        return LINE_BAD;
+    }
+    i++;
+    *why = HAL_REPLAY_BAD_TIME;
+    uint64_t t = 0U;
+    uint32_t sec_digits = 0U;
+    const bool date = ((i + 4U) < n) && is_digit(s[i]) && is_digit(s[i + 1U]) &&
+                      is_digit(s[i + 2U]) && is_digit(s[i + 3U]) && (s[i + 4U] == '-');
+    const bool time_ok = date ? parse_date(s, &i, n, &t) : parse_seconds(s, &i, n, &t, &sec_digits);
+    if (!time_ok || (i >= n) || (s[i] != ')')) {
+        return LINE_BAD;
+    }
+    i++;
+    *why = HAL_REPLAY_BAD_SYNTAX;
+    if ((i >= n) || !is_blank(s[i])) {
+        return LINE_BAD;
+    }
+    i = skip_blanks(s, i, n);
+    const size_t if_start = i;
+    while ((i < n) && !is_blank(s[i]) && ((unsigned char)s[i] > 0x20U) &&
+           ((unsigned char)s[i] < 0x7FU)) {
+        i++;
+    }
+    const size_t if_len = i - if_start;
+    if ((if_len == 0U) || (if_len > HAL_REPLAY_IFNAME_MAX) || (i >= n) || !is_blank(s[i])) {
+        return LINE_BAD;
+    }
+    i = skip_blanks(s, i, n);
+    const size_t frame_end = token_end(s, i, n);
+    const bool compact = memchr(&s[i], '#', frame_end - i) != NULL;
+    const line_kind_t kind = compact ? parse_compact(s, i, n, f, why) : parse_printed(s, i, n, f, why);
+    if (kind != LINE_FRAME) {
+        return kind;
+    }
+    for (uint32_t k = f->dlc; k < PFE_CAN_MAX_DLC; k++) {
         f->data[k] = 0U;
     }
-    *t_us = (sec * 1000000U) + usec;
+    *t_us = t;
     if (!bus->ifname_fixed && !bus->any_log_frame) {
         (void)memcpy(bus->ifname, &s[if_start], if_len);
         bus->ifname[if_len] = '\0';
@@ -310,10 +574,38 @@ static void bad_line(hal_replay_bus_t *bus, hal_replay_reason_t why)
     }
 }
 
+/* bus->next.frame, read at t_us, is the next log frame. */
+static void accept_next(hal_replay_bus_t *bus, uint64_t t_us)
+{
+    uint64_t t = t_us;
+    if (bus->any_log_frame && (t < bus->last_log_us)) {
+        bus->stats.time_backwards++;
+        t = bus->last_log_us;
+    }
+    bus->any_log_frame = true;
+    bus->last_log_us = t;
+    bus->next.timestamp_us = t;
+    bus->have_next = true;
+}
+
 /* Reads ahead to the next log frame. */
 static void load_next(hal_replay_bus_t *bus)
 {
     bus->have_next = false;
+    if (bus->source != NULL) {
+        char name[HAL_REPLAY_IFNAME_MAX + 1U];
+        uint64_t t_us = 0U;
+        name[0] = '\0';
+        if (bus->source(bus->source_ctx, &bus->next.frame, &t_us, name, &bus->stats) <= 0) {
+            return;
+        }
+        name[HAL_REPLAY_IFNAME_MAX] = '\0';
+        if (!bus->ifname_fixed && !bus->any_log_frame && (name[0] != '\0')) {
+            (void)memcpy(bus->ifname, name, sizeof name);
+        }
+        accept_next(bus, t_us);
+        return;
+    }
     bool too_long = false;
     while (read_line(bus, &too_long)) {
         bus->stats.lines++;
@@ -335,27 +627,23 @@ static void load_next(hal_replay_bus_t *bus)
             bad_line(bus, why);
             continue;
         }
-        if (bus->any_log_frame && (t_us < bus->last_log_us)) {
-            bus->stats.time_backwards++;
-            t_us = bus->last_log_us;
-        }
-        bus->any_log_frame = true;
-        bus->last_log_us = t_us;
-        bus->next.timestamp_us = t_us;
-        bus->have_next = true;
+        accept_next(bus, t_us);
         return;
     }
 }
 
 /* ------------------------------------------------------------------ public */
 
-void hal_replay_init(hal_replay_bus_t *bus, hal_replay_read_fn read, void *read_ctx,
-                     hal_replay_write_fn write, void *write_ctx, const char *record_ifname)
+static void init_bus(hal_replay_bus_t *bus, hal_replay_read_fn read, void *read_ctx,
+                     hal_replay_source_fn source, void *source_ctx, hal_replay_write_fn write,
+                     void *write_ctx, const char *record_ifname)
 {
     (void)memset(bus, 0, sizeof *bus);
     bus->time.bus = bus;
     bus->read = read;
     bus->read_ctx = read_ctx;
+    bus->source = source;
+    bus->source_ctx = source_ctx;
     bus->write = write;
     bus->write_ctx = write_ctx;
     const char *name = "can0";
@@ -373,6 +661,18 @@ void hal_replay_init(hal_replay_bus_t *bus, hal_replay_read_fn read, void *read_
     if (bus->have_next) {
         bus->now_us = bus->next.timestamp_us;
     }
+}
+
+void hal_replay_init(hal_replay_bus_t *bus, hal_replay_read_fn read, void *read_ctx,
+                     hal_replay_write_fn write, void *write_ctx, const char *record_ifname)
+{
+    init_bus(bus, read, read_ctx, NULL, NULL, write, write_ctx, record_ifname);
+}
+
+void hal_replay_init_source(hal_replay_bus_t *bus, hal_replay_source_fn source, void *source_ctx,
+                            hal_replay_write_fn write, void *write_ctx, const char *record_ifname)
+{
+    init_bus(bus, NULL, NULL, source, source_ctx, write, write_ctx, record_ifname);
 }
 
 bool hal_replay_next_us(const hal_replay_bus_t *bus, uint64_t *t_us)
@@ -460,7 +760,8 @@ const char *hal_replay_reason_text(hal_replay_reason_t reason)
     case HAL_REPLAY_LINE_OK:
         return "no error";
     case HAL_REPLAY_BAD_SYNTAX:
-        return "not a candump log line: (seconds.fraction) interface id#data";
+        return "not a candump line: (seconds.fraction) interface id#data, or candump's printed "
+               "(time) interface id [length] bytes";
     case HAL_REPLAY_BAD_TIME:
         return "bad timestamp: digits, then 6 or 9 fraction digits";
     case HAL_REPLAY_BAD_ID:
@@ -471,6 +772,10 @@ const char *hal_replay_reason_text(hal_replay_reason_t reason)
         return "more than 8 data bytes";
     case HAL_REPLAY_LINE_TOO_LONG:
         return "line too long";
+    case HAL_REPLAY_BAD_NO_TIME:
+        return "no timestamp: candump output needs -t a, z, d or A to be replayed";
+    case HAL_REPLAY_BAD_OTHER:
+        return "not a CAN frame line";
     default:
         return "unknown";
     }

@@ -20,18 +20,36 @@
  * (sim_host/ecu_replay.c) through stdio. The platform hands in two byte
  * streams, an input log and an output record.
  *
- * Input: candump's log format, one frame a line,
+ * Input: candump's log format (`candump -L`), one frame a line,
  *     (1700000000.123456) vcan0 18FEF100#0011223344556677
- * with 6 or 9 fraction digits (nine are truncated to microseconds), an
- * 11-bit id as 3 hex digits or a 29-bit id as 8, and 0 to 8 data bytes as
- * pairs of hex digits (either case); a trailing CR is accepted, empty lines
- * are ignored. Lines that are valid candump but not classic data frames (CAN
- * FD `##`, remote `#R`, error frames with CAN_ERR_FLAG in the id) are
- * skipped and counted: the module's bus is classic J1939. Any other line is
- * bad: skipped, counted, and the first one kept by number and reason. A
- * frame earlier than the one before it is delivered at once and counted.
- * Lines longer than HAL_REPLAY_LINE_MAX characters are bad (a binary file
- * ends up there or as a syntax error, never as a frame).
+ * or candump's printed output with a timestamp (-t a, z, d or A):
+ *     (1700000000.123456)  vcan0  18FEF100   [8]  00 11 22 33 44 55 66 77
+ *     (000.011063)  can0  18FEF100   [8]  FF 12 34 56 78 9A BC DE
+ *     (2026-12-01 10:00:00.123456)  can0  123   [2]  0A 0B
+ * (a -t A date is read as UTC; -t d's deltas are read as times since the
+ * start, as sim_host/canlog.h reads them unless told otherwise), each line
+ * on its own, so that the two forms may even be mixed. Timestamps have 6 or
+ * 9 fraction digits (nine are truncated to microseconds); ids are 3 hex
+ * digits (11-bit) or 8 (29-bit); data are 0 to 8 bytes as pairs of hex
+ * digits (either case; '.' may split a log line's bytes, blanks separate
+ * the printed ones). candump -x's direction columns and -a's quoted ASCII
+ * column are accepted. A trailing CR is accepted; blank lines, comments
+ * ('#', "//"), candump's "DROPCOUNT:" lines and the tab-indented lines -e
+ * writes under an error frame are ignored. Lines that are valid candump but
+ * not classic data frames (CAN FD `##` or a two-digit [length], remote
+ * `#R` or "remote request", error frames with CAN_ERR_FLAG in the id) are
+ * skipped and counted: the module's bus is classic J1939. Any other line
+ * is bad (printed output without a timestamp too: there is no time to
+ * replay it at): skipped, counted, and the first one kept by number and
+ * reason. A frame earlier than the one before it is delivered at once and
+ * counted. Lines longer than HAL_REPLAY_LINE_MAX characters are bad (a
+ * binary file ends up there or as a syntax error, never as a frame).
+ * tests/replay/log_vectors.h holds the lines this reader and the host's
+ * (sim_host/canlog.h) are both tested on.
+ *
+ * A host may hand in frames instead of text (hal_replay_init_source()):
+ * the host tools read logs through sim_host/canlog.h, one parser for
+ * every format, and the bus does the rest as for a text log.
  *
  * Output: `(seconds.microseconds) IFACE ID#DATA\n`, ids as 3 or 8 upper-case
  * hex digits, data as upper-case pairs: candump -L's own format. IFACE is
@@ -51,7 +69,8 @@
 
 #define HAL_REPLAY_MAX_HANDLES 2U
 #define HAL_REPLAY_RX_QUEUE 128U     /* frames per handle between two receives; more are dropped */
-#define HAL_REPLAY_LINE_MAX 200U     /* characters of one log line, without its newline */
+#define HAL_REPLAY_LINE_MAX 400U     /* characters of one log line, without its newline:
+                                        a printed CAN FD frame of 64 bytes with -x and -a */
 #define HAL_REPLAY_IN_CHUNK 256U     /* bytes asked of the input at a time */
 #define HAL_REPLAY_OUT_BUF 512U      /* record bytes buffered before a write */
 #define HAL_REPLAY_IFNAME_MAX 15U    /* as Linux's IFNAMSIZ - 1 */
@@ -70,6 +89,8 @@ typedef enum {
     HAL_REPLAY_BAD_DATA,             /* data: bad hex or odd number of digits */
     HAL_REPLAY_BAD_LENGTH,           /* more than 8 data bytes */
     HAL_REPLAY_LINE_TOO_LONG,        /* over HAL_REPLAY_LINE_MAX characters */
+    HAL_REPLAY_BAD_NO_TIME,          /* candump's printed output without a timestamp */
+    HAL_REPLAY_BAD_OTHER,            /* a reason a frame source gives (hal_replay_init_source()) */
 } hal_replay_reason_t;
 
 typedef struct {
@@ -87,6 +108,15 @@ typedef struct {
 } hal_replay_stats_t;
 
 typedef struct hal_replay_bus hal_replay_bus_t;
+
+/* A frame source: the next classic data frame of the log into *f, its time
+ * into *t_us and its interface name into ifname (NUL-terminated), and 1; or
+ * 0 at the end of the log. It counts what it reads and skips in *stats:
+ * lines, skipped_not_classic, bad_lines, first_bad_line, first_bad_reason
+ * and read_failed (the bus counts frames and time_backwards itself). */
+typedef int32_t (*hal_replay_source_fn)(void *ctx, pfe_can_frame_t *f, uint64_t *t_us,
+                                        char ifname[HAL_REPLAY_IFNAME_MAX + 1U],
+                                        hal_replay_stats_t *stats);
 
 /* A handle: one node's view of the bus. Fields are the backend's. */
 struct hal_can {
@@ -109,6 +139,8 @@ struct hal_replay_bus {
     /* input */
     hal_replay_read_fn read;
     void *read_ctx;
+    hal_replay_source_fn source;     /* NULL: parse what read gives */
+    void *source_ctx;
     uint8_t in[HAL_REPLAY_IN_CHUNK];
     uint32_t in_pos;
     uint32_t in_len;
@@ -137,6 +169,10 @@ struct hal_replay_bus {
  */
 void hal_replay_init(hal_replay_bus_t *bus, hal_replay_read_fn read, void *read_ctx,
                      hal_replay_write_fn write, void *write_ctx, const char *record_ifname);
+
+/* The same with frames from source (not NULL) instead of text. */
+void hal_replay_init_source(hal_replay_bus_t *bus, hal_replay_source_fn source, void *source_ctx,
+                            hal_replay_write_fn write, void *write_ctx, const char *record_ifname);
 
 /* Time of the next log frame not yet on the bus: true and *t_us, or false
  * when the log is exhausted. */

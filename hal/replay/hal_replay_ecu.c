@@ -7,11 +7,9 @@
 #include "firmware/pfe_fixed.h"
 #include "firmware/pfe_platoon.h"
 
-int hal_replay_ecu_init(hal_replay_ecu_t *run, hal_replay_read_fn read, void *read_ctx,
-                        hal_replay_write_fn write, void *write_ctx, const pfe_ecu_config_t *cfg)
+/* The ECU's start on a bus already opened on its log. */
+static int start_on_bus(hal_replay_ecu_t *run, const pfe_ecu_config_t *cfg)
 {
-    (void)memset(run, 0, sizeof *run);
-    hal_replay_init(&run->bus, read, read_ctx, write, write_ctx, NULL);
     hal_replay_nvm_init(&run->nvm);
     uint64_t first_us = 0U;
     if (!hal_replay_next_us(&run->bus, &first_us)) {
@@ -20,6 +18,23 @@ int hal_replay_ecu_init(hal_replay_ecu_t *run, hal_replay_read_fn read, void *re
     run->can = hal_replay_open(&run->bus);
     run->now_us = first_us;
     return hal_ecu_loop_init(&run->loop, &run->ecu, cfg, run->can, &run->nvm, first_us);
+}
+
+int hal_replay_ecu_init(hal_replay_ecu_t *run, hal_replay_read_fn read, void *read_ctx,
+                        hal_replay_write_fn write, void *write_ctx, const pfe_ecu_config_t *cfg)
+{
+    (void)memset(run, 0, sizeof *run);
+    hal_replay_init(&run->bus, read, read_ctx, write, write_ctx, NULL);
+    return start_on_bus(run, cfg);
+}
+
+int hal_replay_ecu_init_source(hal_replay_ecu_t *run, hal_replay_source_fn source, void *source_ctx,
+                               hal_replay_write_fn write, void *write_ctx,
+                               const pfe_ecu_config_t *cfg)
+{
+    (void)memset(run, 0, sizeof *run);
+    hal_replay_init_source(&run->bus, source, source_ctx, write, write_ctx, NULL);
+    return start_on_bus(run, cfg);
 }
 
 bool hal_replay_ecu_feed(hal_replay_ecu_t *run)

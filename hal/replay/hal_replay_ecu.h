@@ -70,6 +70,12 @@ int hal_replay_ecu_args(int argc, char *const argv[], hal_replay_ecu_args_t *out
 int hal_replay_ecu_init(hal_replay_ecu_t *run, hal_replay_read_fn read, void *read_ctx,
                         hal_replay_write_fn write, void *write_ctx, const pfe_ecu_config_t *cfg);
 
+/* The same with the log's frames from source (hal_replay_init_source()),
+ * as the host tool reads them (sim_host/replay_source.h). */
+int hal_replay_ecu_init_source(hal_replay_ecu_t *run, hal_replay_source_fn source, void *source_ctx,
+                               hal_replay_write_fn write, void *write_ctx,
+                               const pfe_ecu_config_t *cfg);
+
 /* One tick: true, or false once the run is over (nothing done then).
  * The same as hal_replay_ecu_feed() then, if it returned true,
  * hal_replay_ecu_tick(). */

@@ -30,6 +30,17 @@
  *                             preview and predicts over it, ticks as above
  *   predict_ticks             ticks from the preview's last frame to the
  *                             first prediction published
+ *   identify_step_mean / _max one identification step (pfe_identify), one per
+ *                             LFE1 frame, on a 12 t truck's drive (speed
+ *                             ramps 15 -> 25 m/s and back at 0.3 m/s^2 over
+ *                             the hilly road, the engine's fuel rate from the
+ *                             integer model); the max is a window's end with
+ *                             a mass update (its 64-bit division
+ *                             normalised to a 32-bit one)
+ *   identify_bench_mass       the mass identified there, kg (seed 40 t)
+ *   ecu_real_bus_inputs_mean / _max  what a steady tick spends on a truck's
+ *                             bus on sender arbitration, plausibility and
+ *                             identification (two senders of CCVS1 and LFE1)
  *   stack_used                deepest stack seen (painted-stack method)
  * Means are over many steps, so their resolution is far below the 40
  * instructions of one reading; a max is a single reading (+-40).
@@ -42,10 +53,13 @@
 #include "firmware/pfe_ecu.h"
 #include "firmware/pfe_estimator.h"
 #include "firmware/pfe_fixed.h"
+#include "firmware/pfe_identify.h"
+#include "firmware/pfe_input.h"
 #include "firmware/pfe_platoon.h"
 #include "firmware/pfe_predict.h"
 #include "firmware/pfe_selfcheck.h"
 #include "firmware/pfe_sim.h"
+#include "firmware/pfe_vehicle.h"
 #include "hal/mps2/icount.h"
 #include "hal/mps2/semihost.h"
 #include "hal/mps2/startup.h"
@@ -149,6 +163,111 @@ static int bench_sim(void)
     hal_mps2_write_bench("sim_step_mean", insns / sim.steps, "insn");
     hal_mps2_write_bench("sim_12km_hilly_n5_fuel", sim.fuel_nl, "nL");
     sink(sim.time_q16);
+    return 0;
+}
+
+#define IDENTIFY_STEPS 6000U
+
+static pfe_identify_t s_id;
+
+static int bench_identify(void)
+{
+    pfe_vehicle_calib_t truck = pfe_default_vehicle;
+    truck.mass_kg = 12000U;
+    pfe_vehicle_t veh;
+    if ((pfe_vehicle_init(&veh, &truck, &pfe_default_env, 0U) != PFE_OK) ||
+        (pfe_identify_init(&s_id, &pfe_default_vehicle, &pfe_default_env) != PFE_OK)) {
+        return -1;
+    }
+    int32_t v = 15000;
+    int32_t a = 300000;
+    uint64_t pos_mm = 0U;
+    uint64_t total = 0U;
+    uint64_t worst = 0U;
+    for (uint32_t k = 0U; k < IDENTIFY_STEPS; k++) {
+        const uint32_t i = (uint32_t)((pos_mm / road_hilly_spacing_mm) % road_hilly_n_samples);
+        const int32_t grade = road_hilly_grade_ppm[i];
+        pfe_grade_accel_t ga;
+        pfe_grade_accel(grade, pfe_default_env.gravity_um_s2, &ga);
+        const int32_t f = pfe_vehicle_fuel_force_n(&veh, v, a, &ga);
+        const pfe_identify_sample_t smp = {
+            100000ULL * k, v, grade, pfe_fuel_rate_nl_s(f, v, veh.power_aux_w, veh.fuel_q20),
+            true, true, true, false};
+        const uint64_t t0 = hal_mps2_icount_now();
+        (void)pfe_identify_step(&s_id, &smp);
+        const uint64_t t1 = hal_mps2_icount_now();
+        const uint64_t d = t1 - t0;
+        const uint64_t insns = (d > HAL_MPS2_ICOUNT_OVERHEAD_INSNS) ? (d - HAL_MPS2_ICOUNT_OVERHEAD_INSNS) : 0U;
+        total += insns;
+        worst = (insns > worst) ? insns : worst;
+        pos_mm += (uint64_t)v * 100U / 1000U;
+        v += a / 10000; /* a [um/s^2] over 100 ms, in mm/s */
+        a = (v >= 25000) ? -300000 : ((v <= 15000) ? 300000 : a);
+    }
+    if (pfe_identify_counters(&s_id)->mass_updates == 0U) {
+        return -1;
+    }
+    sink(pfe_identify_mass_kg(&s_id));
+    sink(pfe_identify_aux_power_w(&s_id));
+    hal_mps2_write_bench("identify_step_mean", total / IDENTIFY_STEPS, "insn");
+    hal_mps2_write_bench("identify_step_max", worst, "insn");
+    hal_mps2_write_bench("identify_bench_mass", pfe_identify_mass_kg(&s_id), "kg");
+    return 0;
+}
+
+/* The real-bus work a steady tick adds (firmware/pfe_input.h,
+ * pfe_identify.h), as the ECU does it on a truck's bus: every tick the SSI
+ * pitch arbitrated and checked and the five inputs aged; every 10th tick
+ * the engine's CCVS1 and LFE1 and the cab's "not available" CCVS1 and LFE1
+ * arbitrated and checked, and one identification step. Mean and worst per
+ * tick over INPUT_TICKS ticks. */
+#define INPUT_TICKS 3000U
+static pfe_input_t s_in[PFE_IN_COUNT];
+
+static uint64_t input_tick(uint32_t tick, uint64_t now_us)
+{
+    const pfe_est_input_t in = drive_input(tick);
+    const uint64_t t0 = hal_mps2_icount_now();
+    (void)pfe_input_take(&s_in[PFE_IN_GRADE], 0x00U, PFE_SIG_VALID, in.grade_ppm, now_us);
+    if ((tick % 10U) == 0U) {
+        (void)pfe_input_take(&s_in[PFE_IN_SPEED], 0x00U, PFE_SIG_VALID, in.speed_mm_s, now_us);
+        (void)pfe_input_take(&s_in[PFE_IN_SPEED], 0x31U, PFE_SIG_NOT_AVAILABLE, 0, now_us + 5000U);
+        const uint32_t fuel = 8000000U + ((tick * 7919U) % 4000000U);
+        (void)pfe_input_take(&s_in[PFE_IN_ENGINE_FUEL], 0x00U, PFE_SIG_VALID, (int32_t)fuel, now_us);
+        (void)pfe_input_take(&s_in[PFE_IN_ENGINE_FUEL], 0x31U, PFE_SIG_NOT_AVAILABLE, 0, now_us + 5000U);
+        const pfe_identify_sample_t smp = {now_us, in.speed_mm_s, in.grade_ppm, fuel,
+                                           true, true, true, false};
+        (void)pfe_identify_step(&s_id, &smp);
+    }
+    for (uint32_t k = 0U; k < (uint32_t)PFE_IN_COUNT; k++) {
+        (void)pfe_input_age(&s_in[k], now_us + 5000U);
+    }
+    const uint64_t d = hal_mps2_icount_now() - t0;
+    return (d > HAL_MPS2_ICOUNT_OVERHEAD_INSNS) ? (d - HAL_MPS2_ICOUNT_OVERHEAD_INSNS) : 0U;
+}
+
+static int bench_inputs(void)
+{
+    for (uint32_t k = 0U; k < (uint32_t)PFE_IN_COUNT; k++) {
+        pfe_input_init(&s_in[k], (pfe_input_kind_t)k, PFE_INPUT_NO_SOURCE);
+    }
+    if (pfe_identify_init(&s_id, &pfe_default_vehicle, &pfe_default_env) != PFE_OK) {
+        return -1;
+    }
+    uint64_t total = 0U;
+    uint64_t worst = 0U;
+    uint64_t now = 1000000U;
+    for (uint32_t tick = 0U; tick < INPUT_TICKS; tick++, now += PFE_ECU_TICK_US) {
+        const uint64_t insns = input_tick(tick, now);
+        total += insns;
+        worst = (insns > worst) ? insns : worst;
+    }
+    if ((s_in[PFE_IN_SPEED].state != PFE_SIG_VALID) || (s_in[PFE_IN_SPEED].rejected != 0U)) {
+        return -1; /* the measured path is the steady one: nothing rejected */
+    }
+    sink(pfe_identify_mass_kg(&s_id));
+    hal_mps2_write_bench("ecu_real_bus_inputs_mean", total / INPUT_TICKS, "insn");
+    hal_mps2_write_bench("ecu_real_bus_inputs_max", worst, "insn");
     return 0;
 }
 
@@ -500,7 +619,7 @@ int main(void)
     if ((bench_estimator(5U, "est_step_n5_mean", "est_step_n5_max") != 0) ||
         (bench_estimator(PFE_MAX_VEHICLES, "est_step_n32_mean", "est_step_n32_max") != 0) ||
         (bench_sim() != 0) || (bench_ecu() != 0) || (bench_predict() != 0) ||
-        (bench_burst() != 0)) {
+        (bench_identify() != 0) || (bench_inputs() != 0) || (bench_burst() != 0)) {
         hal_mps2_write_str("bench: failed\n");
         return 1;
     }

@@ -231,7 +231,18 @@ static void test_each_bad_line_is_counted_with_its_reason(void **state)
         {"garbage", HAL_REPLAY_BAD_SYNTAX},
         {"(1.000000)can0 123#11", HAL_REPLAY_BAD_SYNTAX},
         {"(1.000000) can0", HAL_REPLAY_BAD_SYNTAX},
-        {"(1.000000) can0 123", HAL_REPLAY_BAD_ID},
+        {"(1.000000) can0 123", HAL_REPLAY_BAD_SYNTAX},
+        {"(1.000000) can0 1234 [1] 11", HAL_REPLAY_BAD_ID},
+        {"(1.000000) can0 123 [9] 11 22 33 44 55 66 77 88 99", HAL_REPLAY_BAD_LENGTH},
+        {"(1.000000) can0 123 [2] 11", HAL_REPLAY_BAD_DATA},
+        {"(1.000000) can0 123 [1] 11 22", HAL_REPLAY_BAD_LENGTH},
+        {"(1.000000) can0 123 [1] 1G", HAL_REPLAY_BAD_DATA},
+        {"(1.000000) can0 123 [1] 11 extra", HAL_REPLAY_BAD_SYNTAX},
+        {"(1.000000) can0 123 [100] 11", HAL_REPLAY_BAD_LENGTH},
+        {"(1.000000) can0 123 [x] 11", HAL_REPLAY_BAD_SYNTAX},
+        {"(2026-13-01 10:00:00.000000) can0 123 [1] 11", HAL_REPLAY_BAD_TIME},
+        {"(1969-12-31 23:59:59.000000) can0 123 [1] 11", HAL_REPLAY_BAD_TIME},
+        {"can0 123 [1] 11", HAL_REPLAY_BAD_NO_TIME},
         {"(1.5) can0 123#11", HAL_REPLAY_BAD_TIME},
         {"(x.000000) can0 123#11", HAL_REPLAY_BAD_TIME},
         {"(1.0000000) can0 123#11", HAL_REPLAY_BAD_TIME},
@@ -242,7 +253,7 @@ static void test_each_bad_line_is_counted_with_its_reason(void **state)
         {"(1.000000) can0 E0000000#11", HAL_REPLAY_BAD_ID},
         {"(1.000000) can0 123#1G", HAL_REPLAY_BAD_DATA},
         {"(1.000000) can0 123#112", HAL_REPLAY_BAD_DATA},
-        {"(1.000000) can0 123#11 extra", HAL_REPLAY_BAD_DATA},
+        {"(1.000000) can0 123#11 extra", HAL_REPLAY_BAD_SYNTAX},
         {"(1.000000) can0 123#112233445566778899", HAL_REPLAY_BAD_LENGTH},
         {"(1.000000) a_name_too_long_for_linux 123#11", HAL_REPLAY_BAD_SYNTAX},
         {"(1.000000) can0 123#11\x01\x02", HAL_REPLAY_BAD_DATA},
@@ -278,13 +289,13 @@ static void test_long_and_binary_lines_never_become_frames(void **state)
     (void)state;
     static char log[2048];
     memset(log, 0, sizeof log);
-    /* A line of 300 characters, then 600 bytes of binary without a newline. */
-    memset(log, '1', 300U);
-    log[300] = '\n';
+    /* A line of 500 characters, then 600 bytes of binary without a newline. */
+    memset(log, '1', 500U);
+    log[500] = '\n';
     for (size_t k = 0U; k < 600U; k++) {
-        log[301U + k] = (char)(((k * 37U) % 255U) + 1U);
-        if (log[301U + k] == '\n') {
-            log[301U + k] = '\x7F';
+        log[501U + k] = (char)(((k * 37U) % 255U) + 1U);
+        if (log[501U + k] == '\n') {
+            log[501U + k] = '\x7F';
         }
     }
     start(log, 7U);
@@ -361,6 +372,148 @@ static void test_failed_record_and_failed_read_are_reported(void **state)
     assert_true(hal_replay_stats(&g_bus)->record_failed);
 }
 
+/* ------------------------------------------------------------------ shared vectors */
+
+typedef enum { LV_FRAME, LV_SKIP, LV_COMMENT, LV_BAD, LV_NO_TIME } lv_kind_t;
+typedef struct {
+    const char *line;
+    lv_kind_t kind;
+    uint64_t t_us;
+    uint32_t id;
+    uint8_t len;
+    const char *hex;
+} log_vector_t;
+
+static const log_vector_t k_vectors[] = {
+#define LOG_VECTOR(line, kind, t_us, id, len, hex) {line, kind, t_us, id, len, hex},
+#include "tests/replay/log_vectors.h"
+#undef LOG_VECTOR
+};
+
+static uint8_t hex_byte(const char *p)
+{
+    unsigned v = 0U;
+    for (int k = 0; k < 2; k++) {
+        const char c = p[k];
+        v = (v << 4) | (unsigned)((c <= '9') ? (c - '0') : (c - 'A' + 10));
+    }
+    return (uint8_t)v;
+}
+
+/* Each line of tests/replay/log_vectors.h alone, as sim_host/canlog.c is
+ * tested on it (tests/host/test_canlog.c). */
+static void test_shared_log_vectors(void **state)
+{
+    (void)state;
+    static char log[HAL_REPLAY_LINE_MAX + 2U];
+    for (size_t k = 0U; k < sizeof k_vectors / sizeof k_vectors[0]; k++) {
+        const log_vector_t *v = &k_vectors[k];
+        const int n = snprintf(log, sizeof log, "%s\n", v->line);
+        assert_true((n > 0) && ((size_t)n < sizeof log));
+        start(log, 0U);
+        hal_can_t *h = hal_replay_open(&g_bus);
+        hal_replay_advance_to(&g_bus, UINT64_MAX);
+        const hal_replay_stats_t *st = hal_replay_stats(&g_bus);
+        const uint32_t frames = (v->kind == LV_FRAME) ? 1U : 0U;
+        const uint32_t skipped = (v->kind == LV_SKIP) ? 1U : 0U;
+        const uint32_t bad = ((v->kind == LV_BAD) || (v->kind == LV_NO_TIME)) ? 1U : 0U;
+        if ((st->frames != frames) || (st->skipped_not_classic != skipped) ||
+            (st->bad_lines != bad) || (st->lines != 1U)) {
+            print_error("vector %u '%s': lines %u frames %u not classic %u bad %u (reason %d)\n",
+                        (unsigned)k, v->line, (unsigned)st->lines, (unsigned)st->frames,
+                        (unsigned)st->skipped_not_classic, (unsigned)st->bad_lines,
+                        (int)st->first_bad_reason);
+        }
+        assert_int_equal(st->lines, 1U);
+        assert_int_equal(st->frames, frames);
+        assert_int_equal(st->skipped_not_classic, skipped);
+        assert_int_equal(st->bad_lines, bad);
+        if (v->kind == LV_NO_TIME) {
+            assert_int_equal(st->first_bad_reason, HAL_REPLAY_BAD_NO_TIME);
+        }
+        hal_can_rx_t rx;
+        if (v->kind != LV_FRAME) {
+            assert_int_equal(hal_can_receive(h, &rx), HAL_EAGAIN);
+            continue;
+        }
+        memset(&rx, 0xA5, sizeof rx);
+        assert_int_equal(hal_can_receive(h, &rx), 0);
+        if ((rx.timestamp_us != v->t_us) || (rx.frame.id != v->id) || (rx.frame.dlc != v->len)) {
+            print_error("vector %u '%s': t %llu id %08lX dlc %u\n", (unsigned)k, v->line,
+                        (unsigned long long)rx.timestamp_us, (unsigned long)rx.frame.id,
+                        (unsigned)rx.frame.dlc);
+        }
+        assert_int_equal(rx.timestamp_us, v->t_us);
+        assert_int_equal(rx.frame.id, v->id);
+        assert_int_equal(rx.frame.dlc, v->len);
+        for (uint8_t b = 0U; b < v->len; b++) {
+            assert_int_equal(rx.frame.data[b], hex_byte(&v->hex[2U * b]));
+        }
+        assert_int_equal(hal_can_receive(h, &rx), HAL_EAGAIN);
+    }
+}
+
+/* The printed form as a bench records it: the record is candump -L. */
+static void test_printed_form_replays_as_the_log_form(void **state)
+{
+    (void)state;
+    start("(000.000000)  can0  18FEF100   [8]  FF 12 34 56 78 9A BC DE\n"
+          "\tcontroller-problem{rx-error-warning}\n"
+          "(000.011063)  can0  0CF00400   [3]  F0 FF 7D\n"
+          "(2026-12-01 10:00:00.123456)  can0  123   [0]\n",
+          5U);
+    hal_replay_advance_to(&g_bus, UINT64_MAX);
+    assert_int_equal(hal_replay_flush(&g_bus), 0);
+    assert_string_equal(g_out.buf, "(0.000000) can0 18FEF100#FF123456789ABCDE\n"
+                                   "(0.011063) can0 0CF00400#F0FF7D\n"
+                                   "(1796119200.123456) can0 123#\n");
+    assert_int_equal(hal_replay_stats(&g_bus)->bad_lines, 0);
+    assert_int_equal(hal_replay_stats(&g_bus)->lines, 4);
+}
+
+/* A frame source instead of text: the bus counts and delivers as for text. */
+typedef struct {
+    uint32_t n;
+} fake_source_t;
+
+static int32_t fake_source(void *ctx, pfe_can_frame_t *f, uint64_t *t_us,
+                           char ifname[HAL_REPLAY_IFNAME_MAX + 1U], hal_replay_stats_t *stats)
+{
+    fake_source_t *src = ctx;
+    if (src->n == 3U) {
+        return 0;
+    }
+    stats->lines += 2U; /* a comment line before each frame */
+    memset(f, 0, sizeof *f);
+    f->id = 0x100U + src->n;
+    f->dlc = 1U;
+    f->data[0] = (uint8_t)src->n;
+    *t_us = (src->n == 2U) ? 500U : (1000U * (src->n + 1U)); /* the third goes back */
+    (void)snprintf(ifname, HAL_REPLAY_IFNAME_MAX + 1U, "slcan%u", (unsigned)src->n);
+    src->n++;
+    return 1;
+}
+
+static void test_frame_source_feeds_the_bus(void **state)
+{
+    (void)state;
+    memset(&g_out, 0, sizeof g_out);
+    fake_source_t src = {0U};
+    hal_replay_init_source(&g_bus, fake_source, &src, text_write, &g_out, NULL);
+    uint64_t t = 0U;
+    assert_true(hal_replay_next_us(&g_bus, &t));
+    assert_int_equal(t, 1000U);
+    hal_replay_advance_to(&g_bus, UINT64_MAX);
+    assert_int_equal(hal_replay_flush(&g_bus), 0);
+    assert_string_equal(g_out.buf, "(0.001000) slcan0 100#00\n"
+                                   "(0.002000) slcan0 101#01\n"
+                                   "(0.002000) slcan0 102#02\n");
+    const hal_replay_stats_t *st = hal_replay_stats(&g_bus);
+    assert_int_equal(st->frames, 3);
+    assert_int_equal(st->lines, 6);
+    assert_int_equal(st->time_backwards, 1);
+}
+
 static void test_nvm_starts_erased_and_keeps_writes(void **state)
 {
     (void)state;
@@ -398,6 +551,9 @@ int main(void)
         cmocka_unit_test(test_full_receive_queue_drops_and_counts),
         cmocka_unit_test(test_failed_record_and_failed_read_are_reported),
         cmocka_unit_test(test_nvm_starts_erased_and_keeps_writes),
+        cmocka_unit_test(test_shared_log_vectors),
+        cmocka_unit_test(test_printed_form_replays_as_the_log_form),
+        cmocka_unit_test(test_frame_source_feeds_the_bus),
     };
     failed += cmocka_run_group_tests_name("hal_replay backend", tests, NULL, NULL);
     return failed;

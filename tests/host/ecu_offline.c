@@ -12,7 +12,7 @@
  * microseconds after that (default 3000), receives each frame at the first
  * tick after it, and stops 1.5 s after the last frame, as scripts/run_drive.sh
  * runs the real one. --scale-fuel F multiplies every fuel rate and total the
- * module sends by F (default 1): a module that is F - 1 wrong, for the tests
+ * module sends, and its predicted fuel and bounds, by F (default 1): a module that is F - 1 wrong, for the tests
  * that must see run_report fail.
  *
  * For tests of run_report (tests/host/run_report_test.sh): no vcan, no
@@ -59,12 +59,27 @@ static void scale_fuel(pfe_can_frame_t *f, double k)
             m.total_fuel_ul.value = (uint64_t)llround((double)m.total_fuel_ul.value * k);
             (void)pfe_codec_encode_hrlfc(f, &m, sa);
         }
+    } else if (pgn == PFE_PGN_OWN_FUEL) {
+        pfe_msg_own_fuel_t m;
+        if (pfe_codec_decode_own_fuel(f, &m) >= 0) {
+            m.fuel_rate_nl_s.value = (uint32_t)lround(m.fuel_rate_nl_s.value * k);
+            m.fuel_used_ul.value = (uint64_t)llround((double)m.fuel_used_ul.value * k);
+            (void)pfe_codec_encode_own_fuel(f, &m, sa);
+        }
     } else if (pgn == PFE_PGN_PLATOON_FUEL) {
         pfe_msg_platoon_fuel_t m;
         if (pfe_codec_decode_platoon_fuel(f, &m) >= 0) {
             m.fuel_rate_nl_s.value = (uint32_t)lround(m.fuel_rate_nl_s.value * k);
             m.fuel_used_ul.value = (uint64_t)llround((double)m.fuel_used_ul.value * k);
             (void)pfe_codec_encode_platoon_fuel(f, &m, sa);
+        }
+    } else if (pgn == PFE_PGN_FUEL_PREDICTION) {
+        pfe_msg_fuel_prediction_t m;
+        if ((pfe_codec_decode_fuel_prediction(f, &m) >= 0) && (m.fuel_ul.state == PFE_SIG_VALID)) {
+            m.fuel_ul.value = (uint32_t)lround(m.fuel_ul.value * k);
+            m.fuel_lower_ul.value = (uint32_t)lround(m.fuel_lower_ul.value * k);
+            m.fuel_upper_ul.value = (uint32_t)lround(m.fuel_upper_ul.value * k);
+            (void)pfe_codec_encode_fuel_prediction(f, &m, sa);
         }
     }
 }

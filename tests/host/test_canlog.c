@@ -1001,6 +1001,136 @@ static void test_drive_log_three_formats(void **state)
 
 /* ---- lateness histogram ---------------------------------------------------- */
 
+/* ---- the lines the replay bus (hal/replay) is held to as well ----------- */
+
+typedef enum { LV_FRAME, LV_SKIP, LV_COMMENT, LV_BAD, LV_NO_TIME } lv_kind_t;
+typedef struct {
+    const char *line;
+    lv_kind_t kind;
+    uint64_t t_us;
+    uint32_t id;
+    uint8_t len;
+    const char *hex;
+} log_vector_t;
+
+static const log_vector_t k_vectors[] = {
+#define LOG_VECTOR(line, kind, t_us, id, len, hex) {line, kind, t_us, id, len, hex},
+#include "tests/replay/log_vectors.h"
+#undef LOG_VECTOR
+};
+
+static uint8_t hex_byte(const char *p)
+{
+    unsigned v = 0U;
+    for (int k = 0; k < 2; k++) {
+        const char c = p[k];
+        v = (v << 4) | (unsigned)((c <= '9') ? (c - '0') : (c - 'A' + 10));
+    }
+    return (uint8_t)v;
+}
+
+/* Each line of tests/replay/log_vectors.h alone, format detected, as
+ * tests/hal/test_hal_replay.c reads it through the replay bus. */
+static void test_shared_log_vectors(void **state)
+{
+    (void)state;
+    canlog_reader_t *r = &g_reader;
+    static char text[CANLOG_LINE_MAX + 2U];
+    for (size_t k = 0U; k < sizeof k_vectors / sizeof k_vectors[0]; k++) {
+        const log_vector_t *v = &k_vectors[k];
+        const int n = snprintf(text, sizeof text, "%s\n", v->line);
+        assert_true((n > 0) && ((size_t)n < sizeof text));
+        memset(r, 0xA5, sizeof *r);
+        assert_int_equal(canlog_open_mem(r, text, (size_t)n, "v.log", CANLOG_FMT_AUTO,
+                                         CANLOG_ON_ERROR_STOP), 0);
+        canlog_frame_t f;
+        memset(&f, 0xA5, sizeof f);
+        const int rc = canlog_next(r, &f);
+        const bool frame = (v->kind == LV_FRAME) || (v->kind == LV_SKIP) || (v->kind == LV_NO_TIME);
+        const bool ok = frame ? (rc == 1)
+                              : ((v->kind == LV_COMMENT) ? ((rc == -(int)CANLOG_E_EMPTY) &&
+                                                            (r->comments == 1U))
+                                                         : ((rc < 0) && (rc != -(int)CANLOG_E_EMPTY)));
+        if (!ok) {
+            print_error("vector %u '%s': canlog_next %d, %llu comments: %s\n", (unsigned)k, v->line,
+                        rc, (unsigned long long)r->comments, canlog_message(r));
+        }
+        assert_true(ok);
+        if (v->kind == LV_SKIP) {
+            const bool not_classic = f.fd || ((f.id & (CANLOG_RTR_FLAG | CANLOG_ERR_FLAG)) != 0U);
+            if (!not_classic) {
+                print_error("vector %u '%s': read as a classic data frame %08lX\n", (unsigned)k,
+                            v->line, (unsigned long)f.id);
+            }
+            assert_true(not_classic);
+        }
+        if ((v->kind != LV_FRAME) && (v->kind != LV_NO_TIME)) {
+            continue;
+        }
+        assert_false(f.fd);
+        assert_int_equal(canlog_time_base(r) == CANLOG_TB_NONE, v->kind == LV_NO_TIME);
+        assert_int_equal(f.time_us, v->t_us);
+        assert_int_equal(f.id, v->id);
+        assert_int_equal(f.len, v->len);
+        for (uint8_t b = 0U; b < v->len; b++) {
+            assert_int_equal(f.data[b], hex_byte(&v->hex[2U * b]));
+        }
+        assert_int_equal(canlog_next(r, &f), 0);
+    }
+}
+
+/* DROPCOUNT's count in every form candump writes it in; raw DLCs. */
+static void test_dropcount_and_raw_dlc(void **state)
+{
+    (void)state;
+    canlog_reader_t *r = &g_reader;
+    assert_int_equal(read_text("DROPCOUNT: dropped 2 CAN frames on 'can0' socket (total drops 2)\n"
+                               "(1.000000) can0 123#0011223344556677_C\n"
+                               "DROPCOUNT: dropped 5 CAN frames on 'can0' socket (total drops 7)\n"
+                               "(1.000001) can0 123#00\n", CANLOG_FMT_AUTO), 2);
+    assert_int_equal(r->dropped, 7);
+    assert_int_equal(g_frames[0].len, 8);
+    assert_int_equal(g_frames[0].len8_dlc, 12);
+    assert_int_equal(g_frames[1].len8_dlc, 0);
+    char buf[CANLOG_LOG_LINE_MAX];
+    assert_int_equal(canlog_write_log(buf, sizeof buf, &g_frames[0], NULL), 48U);
+    assert_string_equal(buf, "(0000000001.000000) can0 123#0011223344556677_C\n");
+    assert_int_equal(read_text("(000.000000)  can0  123   [1]  01\n"
+                               "DROPCOUNT: dropped 4 CAN frames on 'can0' socket (total drops 4)\n"
+                               "(000.100000)  can0  123   [1]  02\n", CANLOG_FMT_AUTO), 2);
+    assert_int_equal(r->dropped, 4);
+    memset(r, 0xA5, sizeof *r);
+    const char *bad = "(1.000000) can0 123#0011_9\n";
+    assert_int_equal(canlog_open_mem(r, bad, strlen(bad), "t.log", CANLOG_FMT_AUTO,
+                                     CANLOG_ON_ERROR_STOP), 0);
+    canlog_frame_t f;
+    assert_int_equal(canlog_next(r, &f), -(int)CANLOG_E_DLC);
+    assert_string_equal(canlog_message(r), "t.log:1: bad length: a raw DLC after '_' needs 8 data "
+                                           "bytes and a DLC of 9 to F");
+}
+
+/* With canlog_allow_backwards(), a frame earlier than the one before comes
+ * with its own time, counted. */
+static void test_backwards_allowed(void **state)
+{
+    (void)state;
+    canlog_reader_t *r = &g_reader;
+    const char *text = "(5.000000) can0 100#01\n(4.000000) can0 101#02\n(6.000000) can0 102#03\n";
+    memset(r, 0xA5, sizeof *r);
+    assert_int_equal(canlog_open_mem(r, text, strlen(text), "t.log", CANLOG_FMT_AUTO,
+                                     CANLOG_ON_ERROR_STOP), 0);
+    canlog_allow_backwards(r, true);
+    canlog_frame_t f;
+    assert_int_equal(canlog_next(r, &f), 1);
+    assert_int_equal(canlog_next(r, &f), 1);
+    assert_int_equal(f.time_us, 4000000U);
+    assert_int_equal(canlog_next(r, &f), 1);
+    assert_int_equal(f.time_us, 6000000U);
+    assert_int_equal(canlog_next(r, &f), 0);
+    assert_int_equal(r->backwards, 1);
+    assert_int_equal(r->error_lines, 0);
+}
+
 static void test_lateness(void **state)
 {
     (void)state;
@@ -1086,6 +1216,9 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_same_frames_three_formats),
         cmocka_unit_test(test_drive_log_three_formats),
         cmocka_unit_test(test_lateness),
+        cmocka_unit_test(test_shared_log_vectors),
+        cmocka_unit_test(test_dropcount_and_raw_dlc),
+        cmocka_unit_test(test_backwards_allowed),
     };
     return cmocka_run_group_tests_name("canlog", tests, make_dir, remove_dir);
 }

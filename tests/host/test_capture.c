@@ -189,34 +189,34 @@ static void test_lines_skipped(void **state)
 static void test_bad_lines(void **state)
 {
     (void)state;
-    parse_bad("(1700000000.000000) vcan0", "truncated line: no frame after the interface name");
-    parse_bad("(1700000000.000000)", "expected a blank after the timestamp");
-    parse_bad("(1700000000.000000) ", "truncated line: no interface name");
-    parse_bad("(1700000000.00000", "timestamp fraction has 5 digits, not 6 or 9");
-    parse_bad("(1700000000.0000000) vcan0 123#", "timestamp fraction has 7 digits, not 6 or 9");
-    parse_bad("(1700000000.000000 vcan0 123#", "timestamp: expected ')' after the fraction");
-    parse_bad("1700000000.000000 vcan0 123#", "expected '(' and a timestamp at the start of the line");
-    parse_bad("(17000000000.000000) vcan0 123#", "timestamp seconds longer than 10 digits");
-    parse_bad("(1.000000) vcan0 123#GG", "bad character 'G' in the frame");
-    parse_bad("(1.000000) vcan0 123#0G", "bad hex digit 'G' in the data");
-    parse_bad("(1.000000) vcan0 123#ABC", "odd number of hex digits in the data");
-    parse_bad("(1.000000) vcan0 123#001122334455667788", "more than 8 data bytes (classic CAN)");
-    parse_bad("(1.000000) vcan0 1234#00", "CAN id has 4 hex digits, not 3 or 8");
-    parse_bad("(1.000000) vcan0 800#00", "11-bit CAN id 800 above 7FF");
-    parse_bad("(1.000000) vcan0 40000000#00", "CAN id 40000000 above 3FFFFFFF");
-    parse_bad("(1.000000) vcan0 123456789#00", "CAN id longer than 8 hex digits");
-    parse_bad("(1.000000) vcan0 123-00", "expected '#' after the CAN id, found '-'");
-    parse_bad("(1.000000) vcan0 #00", "bad CAN id: '#' is not a hex digit");
-    parse_bad("(1.000000) vcan0 123#R9", "remote frame DLC 9 above 8");
-    parse_bad("(1.000000) vcan0 123##", "CAN FD: expected a flags hex digit after '##', found end of line");
-    parse_bad("(1.000000) vcan0 123#0011_9", "raw DLC '_9' needs 8 data bytes and a DLC of 9 to F");
-    parse_bad("(1.000000) vcan0 123#00 extra", "unexpected text after the frame");
-    parse_bad("(1.000000) averyveryverylongname 123#00", "interface name longer than 15 characters");
+    /* canlog's reasons (sim_host/canlog.h), the line's file and number cut */
+    parse_bad("(1700000000.000000) vcan0", "truncated line: no frame after the interface");
+    parse_bad("(1700000000.000000)", "truncated line: no interface and frame after the timestamp");
+    parse_bad("(1700000000.00000", "truncated line: line ends in the timestamp");
+    parse_bad("(1700000000.0000000) vcan0 123#", "bad timestamp: 7 fraction digits; 6 or 9 expected");
+    parse_bad("(1700000000.000000 vcan0 123#", "bad timestamp: ' ' where ')' should close the timestamp");
+    parse_bad("1700000000.000000 vcan0 123#", "syntax error: '1': a candump log line starts with '('");
+    parse_bad("(1234567890123.000000) vcan0 123#", "bad timestamp: expected (SECONDS.FRACTION)");
+    parse_bad("(1.000000) vcan0 123#GG", "bad hex: 'G' in the data");
+    parse_bad("(1.000000) vcan0 123#0G", "bad hex: 'G' in the data");
+    parse_bad("(1.000000) vcan0 123#ABC", "truncated line: half a byte at the end of the data");
+    parse_bad("(1.000000) vcan0 123#001122334455667788", "bad length: 9 data bytes, over 8 for classic CAN");
+    parse_bad("(1.000000) vcan0 1234#00", "bad id: id of 4 hex digits; 3 (11-bit) or 8 (29-bit) expected");
+    parse_bad("(1.000000) vcan0 800#00", "bad id: 11-bit id 800 over 7FF");
+    parse_bad("(1.000000) vcan0 40000000#00", "bad id: 29-bit id 40000000 over 1FFFFFFF");
+    parse_bad("(1.000000) vcan0 123-00", "bad hex: '-' in the id");
+    parse_bad("(1.000000) vcan0 123#R9", "bad length: remote frame length 9 over 8");
+    parse_bad("(1.000000) vcan0 123##", "truncated line: no FD flags digit after '##'");
+    parse_bad("(1.000000) vcan0 123#0011_9",
+              "bad length: a raw DLC after '_' needs 8 data bytes and a DLC of 9 to F");
+    parse_bad("(1.000000) vcan0 123#00 extra", "syntax error: 'e' after the frame");
+    parse_bad("(1.000000) averyveryverylongname 123#00",
+              "syntax error: interface name of 21 characters, over 15");
     char line[256] = "(1.000000) vcan0 123##0";
     for (int k = 0; k < 65; k++) {
         strcat(line, "00");
     }
-    parse_bad(line, "more than 64 data bytes (CAN FD)");
+    parse_bad(line, "bad length: 65 data bytes, over 64 for CAN FD");
 }
 
 /* ---- files -------------------------------------------------------------- */
@@ -263,28 +263,74 @@ static void test_load_errors(void **state)
     (void)state;
     load_bad(write_text("back.log", "(1700000000.010000) vcan0 123#00\n"
                                     "(1700000000.009999) vcan0 123#00\n"),
-             ":2: timestamp goes backwards (1700000000.009999 after 1700000000.010000)");
-    load_bad(write_text("empty.log", ""), ": no CAN frames (0 lines)");
-    load_bad(write_text("comments.log", "# nothing\n\n"), ": no CAN frames (2 lines)");
+             ":2: timestamp going backwards: 1700000000.009999 s is before the previous frame's "
+             "1700000000.010000 s");
+    load_bad(write_text("empty.log", ""), ": empty file: no CAN frames (0 lines)");
+    load_bad(write_text("comments.log", "# nothing\n\n"), ": empty file: no CAN frames (2 lines)");
     load_bad(write_file("binary.log", "(1.000000) vcan0 123#00\n\x7F" "ELF\0\x01\x02", 32U),
-             ":2: NUL byte: not a text log");
+             ":2: binary content: control characters or NUL bytes in the line");
     load_bad(write_text("ctrl.log", "(1.000000) vcan0 123#00\x1B[0m\n"),
-             ":1: control character 0x1B: not a text log");
+             ":1: binary content: control characters or NUL bytes in the line");
     load_bad(write_text("hex.log", "(1.000000) vcan0 123#00\n(1.000001) vcan0 123#0Z\n"),
-             ":2: bad hex digit 'Z' in the data");
+             ":2: bad hex: 'Z' in the data");
     load_bad(write_text("trunc.log", "(1.000000) vcan0 123#00\n(1.000001) vca"),
-             ":2: truncated line: no frame after the interface name");
+             ":2: truncated line: no frame after the interface");
     load_bad(write_text("dlc.log", "(1.000000) vcan0 123#000000000000000000\n"),
-             ":1: more than 8 data bytes (classic CAN)");
-    char big[CAPTURE_MAX_LINE + 8U];
+             ":1: bad length: 9 data bytes, over 8 for classic CAN");
+    /* candump's printed output without -t: no time to judge by */
+    load_bad(write_text("notime.txt", "  can0  18FEF100   [8]  FF 12 34 56 78 9A BC DE\n"),
+             ":1: no timestamp: candump output without -t cannot be judged in time (record with "
+             "candump -L, or -t a, z or A)");
+    static char big[CAPTURE_MAX_LINE + 8U];
     memset(big, 'A', sizeof big);
     big[sizeof big - 1U] = '\n';
-    load_bad(write_file("long.log", big, sizeof big), ":1: line longer than 1023 characters");
+    load_bad(write_file("long.log", big, sizeof big), ":1: line too long: 4102 characters, more than 4095");
     capture_t cap;
     char err[ERR_LEN] = "";
     snprintf(g_path, sizeof g_path, "%s/missing.log", g_dir);
     assert_int_equal(capture_load(g_path, &cap, err, sizeof err), -1);
     assert_non_null(strstr(err, "missing.log: No such file or directory"));
+    assert_int_equal(capture_load(g_dir, &cap, err, sizeof err), -1);
+    char want[PATH_LEN + 64];
+    snprintf(want, sizeof want, "%s: is a directory, not a CAN log", g_dir);
+    assert_string_equal(err, want);
+}
+
+/* Benches record with candump's printed form, start mid-drive with no
+ * address claims, carry PGNs nobody here reads and several senders: all
+ * J1939 records, times since the first frame (-t z), drops counted. */
+static void test_load_printed_form(void **state)
+{
+    (void)state;
+    const char *p = write_text("bench.txt",
+                               "(000.000000)  can0  18FEF100   [8]  FF 00 5A FF FF FF FF FF\n"
+                               "(000.001200)  can0  18FEF131   [8]  FF FF FF FF FF FF FF FF\n"
+                               "(000.002500)  can0  0CF00400   [8]  F0 FF 7D 20 1A FF FF FF\n"
+                               "(000.003000)  can0  18FECA00   [8]  00 FF 00 00 00 00 FF FF\n"
+                               "(000.004000)  can0  123   [2]  0A 0B\n"
+                               "(000.005000)  can0  18EAFF31   [3]  E8 FE 00   '...'\n"
+                               "DROPCOUNT: dropped 4 CAN frames on 'can0' socket (total drops 4)\n"
+                               "(000.100000)  can0  18FEF100   [8]  FF 80 5A FF FF FF FF FF\n");
+    capture_t cap;
+    memset(&cap, 0xA5, sizeof cap);
+    char err[ERR_LEN] = "";
+    if (capture_load(p, &cap, err, sizeof err) != 0) {
+        fail_msg("%s", err);
+    }
+    assert_int_equal(cap.n, 6);
+    assert_int_equal(cap.lines, 8);
+    assert_int_equal(cap.skipped_standard, 1);
+    assert_int_equal(cap.dropped, 4);
+    assert_int_equal(cap.recs[0].t_us, 0U);
+    assert_int_equal(cap.recs[1].f.id, 0x98FEF131U);
+    assert_int_equal(cap.recs[2].t_us, 2500U);
+    assert_int_equal(cap.recs[4].f.dlc, 3);
+    assert_int_equal(cap.recs[4].f.data[1], 0xFE);
+    assert_int_equal(cap.recs[4].f.data[3], 0x00); /* unused bytes are zero */
+    assert_int_equal(cap.recs[5].t_us, 100000U);
+    assert_int_equal(cap.recs[5].line, 8);
+    assert_int_equal(cap.recs[5].f.data[1], 0x80);
+    capture_free(&cap);
 }
 
 /* ---- the reference on a capture's inputs --------------------------------- */
@@ -336,10 +382,64 @@ static void test_bus_ref_flat(void **state)
     assert_true(bus_ref_peek(&r, 3000003U, &own, &platoon));
     assert_true(fabs(own * 3600.0 - 33.4707) < 0.005);
     assert_int_equal(r.ticks, ticks);
-    /* The SSI stops: 30 ms later the estimate is not valid. */
+    /* The SSI stops: 30 ms later the road is assumed flat, as the module
+     * assumes it; the CCVS1 stops too: 300 ms later no estimate. */
     bus_ref_advance(&r, 3000003U + 40000U);
+    assert_true(r.grade_flat);
+    assert_true(bus_ref_valid(&r));
+    assert_true(fabs(bus_ref_own_rate(&r) * 3600.0 - 33.4707) < 0.005);
+    bus_ref_advance(&r, 2900003U + 310000U);
     assert_false(bus_ref_valid(&r));
     assert_true(bus_ref_own_rate(&r) == 0.0);
+}
+
+static void frame_ccvs1_from(pfe_can_frame_t *f, int32_t speed_mm_s, pfe_sig_state_t st, uint8_t sa)
+{
+    const pfe_msg_ccvs1_t m = {{speed_mm_s, st}};
+    assert_true(pfe_codec_encode_ccvs1(f, &m, sa) >= 0);
+}
+
+/* Two senders of CCVS1, one not available: the reference locks onto the
+ * valid one, as the module does; a slope sensor in error is no flat road. */
+static void test_bus_ref_senders_and_flat(void **state)
+{
+    (void)state;
+    static bus_ref_t r;
+    assert_int_equal(bus_ref_init(&r, 1U, 0U, 10000U), 0);
+    pfe_can_frame_t f;
+    for (unsigned t = 0U; t < 3000U; t += 100U) {
+        const uint64_t now = 1000000U + (t * 1000U);
+        bus_ref_advance(&r, now);
+        frame_ccvs1_from(&f, 25000, PFE_SIG_VALID, 0x00U);
+        bus_ref_input(&r, &f, now);
+        frame_ccvs1_from(&f, 0, PFE_SIG_NOT_AVAILABLE, 0x31U);
+        bus_ref_input(&r, &f, now + 4000U);
+    }
+    bus_ref_advance(&r, 4000000U);
+    assert_true(r.speed_arb.locked);
+    assert_int_equal(r.speed_arb.sa, 0x00);
+    assert_true(r.grade_flat);
+    assert_true(bus_ref_valid(&r));
+    /* no SSI at all: 90 km/h on a road assumed flat, 33.4707 L/h as above */
+    assert_true(fabs(bus_ref_own_rate(&r) * 3600.0 - 33.4707) < 0.005);
+    /* the engine stops; the cab controller's valid speed takes over after
+     * three periods (300 ms) without a valid value from the engine */
+    for (unsigned t = 0U; t < 1000U; t += 100U) {
+        const uint64_t now = 4000000U + (t * 1000U);
+        bus_ref_advance(&r, now);
+        frame_ccvs1_from(&f, 20000, PFE_SIG_VALID, 0x31U);
+        bus_ref_input(&r, &f, now + 4000U);
+    }
+    assert_int_equal(r.speed_arb.sa, 0x31);
+    assert_true(fabs(r.speed_m_s - 20.0) < 1e-9);
+    /* a slope sensor sending error: no flat road, no estimate */
+    const pfe_msg_ssi_t e = {{0, PFE_SIG_ERROR}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_ssi(&f, &e, 0x00U) >= 0);
+    bus_ref_advance(&r, 5000000U);
+    bus_ref_input(&r, &f, 5000000U);
+    bus_ref_advance(&r, 5020000U);
+    assert_false(r.grade_flat);
+    assert_false(bus_ref_valid(&r));
 }
 
 static void test_bus_ref_platoon_config(void **state)
@@ -438,7 +538,9 @@ int main(void)
         cmocka_unit_test(test_bad_lines),
         cmocka_unit_test(test_load_counts_and_skips),
         cmocka_unit_test(test_load_errors),
+        cmocka_unit_test(test_load_printed_form),
         cmocka_unit_test(test_bus_ref_flat),
+        cmocka_unit_test(test_bus_ref_senders_and_flat),
         cmocka_unit_test(test_bus_ref_platoon_config),
         cmocka_unit_test(test_noise_splitmix64),
         cmocka_unit_test(test_noise_gauss),

@@ -144,19 +144,25 @@ static void test_bad_input(void **state)
 static void test_route_rank(void **state)
 {
     (void)state;
-    route_estimate_t e[3] = {{15.0, 12.0, 18.0}, {10.0, 9.0, 11.0}, {12.0, 11.5, 13.0}};
+    route_estimate_t e[3] = {{15.0, 12.0, 18.0, NULL}, {10.0, 9.0, 11.0, NULL}, {12.0, 11.5, 13.0, NULL}};
     size_t order[3];
     size_t blocker = 99U;
     assert_int_equal(route_rank(e, 3U, order, &blocker), 1);
     assert_true((order[0] == 1U) && (order[1] == 2U) && (order[2] == 0U));
     assert_int_equal(blocker, 99U);
+    e[1].upper_fails = "no upgrade"; /* the numbers agree, the best's upper bound does not hold */
+    assert_int_equal(route_rank(e, 3U, order, &blocker), 2);
+    assert_int_equal(blocker, 99U);
+    e[0].upper_fails = "no upgrade"; /* only the best route's upper bound counts */
+    e[1].upper_fails = NULL;
+    assert_int_equal(route_rank(e, 3U, order, &blocker), 1);
     e[2].lower_l = 11.0; /* touching is not below */
     assert_int_equal(route_rank(e, 3U, order, &blocker), 0);
     assert_int_equal(blocker, 2U);
     e[0].lower_l = 10.5; /* the lowest overlapping lower bound is named */
     assert_int_equal(route_rank(e, 3U, order, &blocker), 0);
     assert_int_equal(blocker, 0U);
-    route_estimate_t tie[2] = {{10.0, 5.0, 6.0}, {10.0, 7.0, 8.0}};
+    route_estimate_t tie[2] = {{10.0, 5.0, 6.0, NULL}, {10.0, 7.0, 8.0, NULL}};
     assert_int_equal(route_rank(tie, 2U, order, NULL), 1);
     assert_true(order[0] == 0U);
     assert_int_equal(route_rank(e, 1U, order, &blocker), -1);
@@ -269,6 +275,166 @@ static void test_node_fuel_between_bounds_on_random_hilly_routes(void **state)
     assert_int_equal(violations, 0);
 }
 
+/* The thesis's uphill road (a constant 2 %, 1000 samples 12 m apart): the
+ * platoon cannot hold 90 km/h, ends at 74 km/h, and the thesis's lower bound
+ * (49.58 L) lies above the node model's fuel (48.80 L). The bounds flag it
+ * and the lower bound to rely on is the energy bound, below the node. */
+static void test_uphill_energy_bound(void **state)
+{
+    (void)state;
+    static double two[1000];
+    for (size_t k = 0U; k < 1000U; k++) {
+        two[k] = 2.0;
+    }
+    node_road_t r;
+    assert_int_equal(node_road_from_percent(two, 1000U, 12.0, &r), 0);
+    node_config_t cfg;
+    node_config_default(&cfg, 5U);
+    static node_sim_t sim;
+    model_summary_t node;
+    assert_int_equal(node_sim_init(&sim, &cfg, &r.road), 0);
+    assert_int_equal(node_sim_run(&sim, &node), 0);
+    fuel_bounds_t b;
+    assert_int_equal(fuel_bounds_compute(&cfg, &r.road, &b, NULL, 0U), 0);
+    node_road_free(&r);
+    print_message("uphill: node %.3f L, thesis lower %.3f L (holds %d), energy bound %.3f L "
+                  "(kinetic %.1f, grade %.1f, rolling %.1f, air %.1f, aux %.1f MJ; floor %.1f, exit %.1f, "
+                  "entry %.1f km/h), upper %.3f L\n",
+                  node.fuel_l, b.lower_l, b.lower_holds, b.energy.fuel_l, b.energy.work_kinetic_j / 1e6,
+                  b.energy.work_grade_j / 1e6, b.energy.work_roll_j / 1e6, b.energy.work_air_j / 1e6,
+                  b.energy.aux_j / 1e6, b.energy.floor_kmh, b.energy.exit_floor_kmh,
+                  b.energy.entry_ceiling_kmh, b.upper_l);
+    assert_false(b.same_speed);
+    assert_false(b.lower_holds);
+    assert_false(b.upper_holds);
+    assert_true(b.sound_lower_energy);
+    /* 5 x 40 t x 9.81 m/s^2 x sin(atan 0.02) x 12000 m = 470.785 MJ: the height gained */
+    assert_in_range((uint64_t)lround(b.energy.work_grade_j / 1000.0), 470780U, 470790U);
+    assert_in_range((uint64_t)lround(1000.0 * b.lower_l), (uint64_t)lround(1000.0 * node.fuel_l) + 1U, 60000U);
+    assert_in_range((uint64_t)lround(1000.0 * b.sound_lower_l), 1U, (uint64_t)lround(1000.0 * node.fuel_l) - 1U);
+    char why[256];
+    assert_non_null(strstr(fuel_bounds_why_not(&b, why, sizeof why), "eq. 5.3"));
+}
+
+/*
+ * A long climb (thesis eq. 5.3's failure): 1000 m flat, then a climb of
+ * 2000 .. 6000 m at +1.5 .. +5.0 %, then by the seed one of: a downgrade of
+ * -1.0 .. -4.0 % over 500 .. 3000 m (the platoon gets its speed back with
+ * fuel off) and flat road; flat road to the end (back to the set speed with
+ * fuel on); the climb to the road's end (it ends slow). 12 km at 10 m.
+ */
+static void long_climb_route(uint64_t seed, double pct[ROUTE_HILLY_SAMPLES])
+{
+    route_rng_t rng;
+    route_rng_seed(&rng, seed);
+    const size_t climb_from = 100U;
+    const size_t climb_to = climb_from + (size_t)route_rng_range(&rng, 200, 600);
+    const double climb = (double)route_rng_range(&rng, 1500, 5000) / 1000.0;
+    const int64_t shape = route_rng_range(&rng, 0, 2);
+    const size_t down_to = climb_to + (size_t)route_rng_range(&rng, 50, 300);
+    const double down = -(double)route_rng_range(&rng, 1000, 4000) / 1000.0;
+    for (size_t k = 0U; k < ROUTE_HILLY_SAMPLES; k++) {
+        double g = 0.0;
+        if ((k >= climb_from) && ((k < climb_to) || (shape == 2))) {
+            g = climb;
+        } else if ((shape == 0) && (k >= climb_to) && (k < down_to)) {
+            g = down;
+        }
+        pct[k] = g;
+    }
+}
+
+/* The bounds route_choice relies on, as a property: over 1000 routes (500
+ * seeded hilly routes, 500 long climbs) the node model's fuel is never below
+ * sound_lower_l, nor above upper_l where upper_holds; where the thesis's
+ * lower bound exceeds the node model's fuel, its assumptions are flagged. */
+#define SOUND_HILLY 500U
+#define SOUND_CLIMBS 500U
+static void test_sound_bounds_on_random_routes_with_long_climbs(void **state)
+{
+    (void)state;
+    unsigned violations = 0U, thesis_held = 0U, energy_used = 0U, thesis_over = 0U, upper_checked = 0U;
+    unsigned energy_speed_misses = 0U;
+    double margin = INFINITY, energy_margin_on_climbs = INFINITY;
+    uint64_t margin_route = 0U;
+    static int32_t mpct[ROUTE_HILLY_SAMPLES];
+    static double pct[ROUTE_HILLY_SAMPLES];
+    node_config_t cfg;
+    node_config_default(&cfg, 5U);
+    static node_sim_t sim;
+    for (uint64_t k = 1U; k <= SOUND_HILLY + SOUND_CLIMBS; k++) {
+        if (k <= SOUND_HILLY) {
+            route_gen_hilly(1000U + k, mpct);
+            for (size_t j = 0U; j < ROUTE_HILLY_SAMPLES; j++) {
+                pct[j] = mpct[j] / 1000.0;
+            }
+        } else {
+            long_climb_route(k, pct);
+        }
+        node_road_t r;
+        assert_int_equal(node_road_from_percent(pct, ROUTE_HILLY_SAMPLES, ROUTE_HILLY_SPACING_M, &r), 0);
+        model_summary_t node;
+        assert_int_equal(node_sim_init(&sim, &cfg, &r.road), 0);
+        const int rc_node = node_sim_run(&sim, &node);
+        fuel_bounds_t b;
+        char err[128] = "";
+        const int rc_bounds = fuel_bounds_compute(&cfg, &r.road, &b, err, sizeof err);
+        node_road_free(&r);
+        if ((rc_node != 0) || (rc_bounds != 0)) {
+            violations++;
+            print_message("VIOLATION route %" PRIu64 ": a run failed (node %d, bounds %d: %s)\n", k, rc_node,
+                          rc_bounds, err);
+            continue;
+        }
+        thesis_held += b.lower_holds ? 1U : 0U;
+        energy_used += b.sound_lower_energy ? 1U : 0U;
+        if ((node.min_kmh < b.energy.floor_kmh) || (node.end_speed_kmh < b.energy.exit_floor_kmh)) {
+            energy_speed_misses++;
+        }
+        if (b.lower_l > node.fuel_l) {
+            thesis_over++;
+            if (b.lower_holds) {
+                violations++;
+                print_message("VIOLATION route %" PRIu64 ": thesis lower %.4f L above node %.4f L, "
+                              "assumptions not flagged\n", k, b.lower_l, node.fuel_l);
+            }
+        }
+        if (b.sound_lower_l > node.fuel_l) {
+            violations++;
+            print_message("VIOLATION route %" PRIu64 ": lower bound %.4f L (%s) above node %.4f L\n", k,
+                          b.sound_lower_l, b.sound_lower_energy ? "energy" : "thesis", node.fuel_l);
+        }
+        if (b.upper_holds) {
+            upper_checked++;
+            if (b.upper_l < node.fuel_l) {
+                violations++;
+                print_message("VIOLATION route %" PRIu64 ": upper bound %.4f L below node %.4f L\n", k,
+                              b.upper_l, node.fuel_l);
+            }
+        }
+        const double m = (node.fuel_l - b.sound_lower_l) / node.fuel_l;
+        if (m < margin) {
+            margin = m;
+            margin_route = k;
+        }
+        if (k > SOUND_HILLY) {
+            energy_margin_on_climbs = fmin(energy_margin_on_climbs, (node.fuel_l - b.energy.fuel_l) / node.fuel_l);
+        }
+    }
+    print_message("sound bounds: %u routes (%u hilly, %u long climbs), N = 5: %u violations; the thesis's "
+                  "assumptions held on %u, the energy bound was the lower bound on %u\n",
+                  SOUND_HILLY + SOUND_CLIMBS, SOUND_HILLY, SOUND_CLIMBS, violations, thesis_held, energy_used);
+    print_message("sound bounds: the thesis's lower bound exceeds the node model's fuel on %u routes, all "
+                  "flagged; the upper bound checked on %u routes; the node model's speeds left the energy "
+                  "bound's assumed range on %u routes\n",
+                  thesis_over, upper_checked, energy_speed_misses);
+    print_message("sound bounds: closest to the lower bound: route %" PRIu64 ", %.2f %% above it; energy "
+                  "bound on the long climbs at least %.2f %% below the node model\n",
+                  margin_route, 100.0 * margin, 100.0 * energy_margin_on_climbs);
+    assert_int_equal(violations, 0);
+    assert_int_equal(SOUND_HILLY + SOUND_CLIMBS, 1000U);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -279,6 +445,8 @@ int main(void)
         cmocka_unit_test(test_route_rank),
         cmocka_unit_test(test_route_generator),
         cmocka_unit_test(test_node_fuel_between_bounds_on_random_hilly_routes),
+        cmocka_unit_test(test_uphill_energy_bound),
+        cmocka_unit_test(test_sound_bounds_on_random_routes_with_long_climbs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

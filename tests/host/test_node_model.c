@@ -14,6 +14,12 @@
  *   the lead truck's steady speed on a constant 2 % upgrade at a 0.4 s gap:
  *     250 000 / v = 3.87 (1 - phi_lead(0.4 v)/100) v^2 + 2746.8 cos a + 392 400 sin a,
  *     a = atan 0.02, solved by bisection: v = 20.6636 m/s = 74.389 km/h, gap 8.265 m
+ *   table 5.4, five default trucks fed 25 m/s over 12 km (480 s), gap 10 m in both
+ *   (phi 8, 31, 35, 35, 35 %: air 3.87 x 3.56 x 625 = 8610.75 N):
+ *     flat, both: (8610.75 + 5 x 2746.8) 12000 + 5 x 4000 x 480 = 277 737 000 J, 19.395042 L
+ *     2 %, object (small angles): + 1 962 000 x 0.02 N: 52.277723 L
+ *     2 %, node: 13 734 cos a + 1 962 000 sin a, a = atan 0.02 (cos 0.99980006, sin 0.01999600):
+ *     52.268848 L
  */
 #include <math.h>
 #include <setjmp.h>
@@ -363,6 +369,46 @@ static void test_grade_lookup_extends_the_road_ends(void **state)
     node_road_free(&road); /* twice is harmless */
 }
 
+/* Table 5.4: the two fuel models fed one trajectory (hand-computed literals above). */
+static void test_fuel_models_fed_one_trajectory(void **state)
+{
+    (void)state;
+    node_config_t cfg;
+    node_config_default(&cfg, 5U);
+    cfg.length_m = 0.0;
+    static double v[12001];
+    for (size_t k = 0U; k < 12001U; k++) {
+        v[k] = 25.0;
+    }
+    double node_l = -1.0, object_l = -1.0;
+    node_road_t flat = const_road(1200U, 10.0, 0.0);
+    assert_int_equal(node_fuel_fed(&cfg, &flat.road, 1.0, v, 12001U, false, &node_l, &object_l), 0);
+    print_message("fed 25 m/s, flat: node %.6f L, object %.6f L\n", node_l, object_l);
+    assert_in_range(lround(node_l * 1e6), 19395041, 19395043);
+    assert_in_range(lround(object_l * 1e6), 19395041, 19395043);
+    /* the node model itself holds 25 m/s on the flat: its mean speed profile is that */
+    static node_sim_t sim;
+    static double profile[12001];
+    assert_int_equal(node_mean_speed_profile(&cfg, &flat.road, 1.0, profile, 12001U, &sim), 0);
+    assert_in_range(lround(profile[0] * 1e6), 24999999, 25000001);
+    assert_in_range(lround(profile[6000] * 1e6), 24999999, 25000001);
+    assert_in_range(lround(profile[12000] * 1e6), 24999999, 25000001);
+    assert_int_equal(node_mean_speed_profile(&cfg, &flat.road, 1.0, profile, 12000U, &sim), -1);
+    assert_int_equal(node_fuel_fed(&cfg, &flat.road, 1.0, v, 12002U, false, &node_l, &object_l), -1);
+    v[17] = 0.0;
+    v[18] = 0.0;
+    assert_int_equal(node_fuel_fed(&cfg, &flat.road, 1.0, v, 12001U, false, &node_l, &object_l), -1);
+    v[17] = 25.0;
+    v[18] = 25.0;
+    node_road_free(&flat);
+    node_road_t up = const_road(1200U, 10.0, 2.0);
+    assert_int_equal(node_fuel_fed(&cfg, &up.road, 1.0, v, 12001U, false, &node_l, &object_l), 0);
+    print_message("fed 25 m/s, 2 %%: node %.6f L, object %.6f L\n", node_l, object_l);
+    assert_in_range(lround(node_l * 1e6), 52268847, 52268849);
+    assert_in_range(lround(object_l * 1e6), 52277722, 52277724);
+    node_road_free(&up);
+}
+
 int main(int argc, char **argv)
 {
     g_roads_dir = (argc > 1) ? argv[1] : getenv("PFE_ROADS_DIR");
@@ -382,6 +428,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_thesis_tables_on_the_bundled_roads),
         cmocka_unit_test(test_bad_configurations_are_refused),
         cmocka_unit_test(test_grade_lookup_extends_the_road_ends),
+        cmocka_unit_test(test_fuel_models_fed_one_trajectory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

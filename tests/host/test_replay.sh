@@ -6,12 +6,21 @@
 # real-bus guard on lo (which classifies interfaces through rtnetlink, so it
 # works on a kernel without CAN). What needs vcan is tests/e2e/replay_vcan.sh.
 #
-#   tests/host/test_replay.sh PFE_REPLAY DRIVE_LOG
+#   tests/host/test_replay.sh PFE_REPLAY DRIVE_LOG [PFE_ECU_REPLAY PFE_ECU]
+#
+# With PFE_ECU_REPLAY and PFE_ECU, also what those say about their inputs:
+# the firmware replayed over the drive as candump's printed output (-t z,
+# -t A) and as ASC gives the record the candump log gives; a directory, a
+# bad line (file, line, reason), printed output without timestamps; and
+# pfe_ecu's interface checks (an empty name, no such interface, lo which is
+# not CAN; a real CAN bus needs the VM, tests/e2e/replay_vcan.sh's slcan).
 #
 # Exit status: 0 when every check passes, 1 otherwise (each failure printed).
 set -u
 rp=$1
 drive=$2
+ecu_replay=${3:-}
+ecu=${4:-}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 failed=0
@@ -201,6 +210,94 @@ expect_exit "no such interface" 1 "cannot send on nosuch0: no such interface" \
     "$rp" -I "$drive" nosuch0=vcan0
 expect_exit "--skip-unknown" 0 "no interface nosuch0: its frames are skipped" \
     "$rp" --skip-unknown -t -I "$drive" nosuch0=vcan0
+
+if [ -n "$ecu_replay" ]; then
+    # The drive as a bench records it: candump -t z (times from the first
+    # frame) and -t A (dates), two blanks apart, bytes spaced.
+    awk '{ t = substr($1, 2, length($1) - 2); split($3, a, "#"); d = a[2]; s = "";
+           for (i = 1; i <= length(d); i += 2) s = s " " substr(d, i, 2);
+           printf "(%s)  %s  %8s   [%d] %s\n", t, $2, a[1], length(d) / 2, s }' "$drive" \
+        >"$tmp/drive_ta.txt"
+    awk '{ t = substr($1, 2, length($1) - 2) - 1700000000;
+           sub(/^\([0-9]+\.[0-9]+\)/, sprintf("(%03d.%06d)", int(t), (t - int(t)) * 1000000 + 0.5)); print }' \
+        "$tmp/drive_ta.txt" >"$tmp/drive_tz.txt"
+    "$ecu_replay" --log "$drive" --record "$tmp/rec_log.log" >"$tmp/sum_log.txt" 2>"$tmp/err"
+    "$ecu_replay" --log "$tmp/drive_ta.txt" --record "$tmp/rec_ta.log" >"$tmp/sum_ta.txt" 2>>"$tmp/err"
+    if cmp -s "$tmp/rec_log.log" "$tmp/rec_ta.log" && cmp -s "$tmp/sum_log.txt" "$tmp/sum_ta.txt"; then
+        ok "pfe_ecu_replay: printed -t a, the same record ($(wc -l <"$tmp/rec_ta.log") lines)"
+    else
+        bad "pfe_ecu_replay: printed -t a record differs"; cat "$tmp/err"
+    fi
+    "$ecu_replay" --log "$tmp/drive_tz.txt" --record "$tmp/rec_tz.log" >"$tmp/sum_tz.txt" 2>"$tmp/err"
+    # -t z counts from the first frame: the same record 1700000000 s earlier
+    awk '{ t = substr($1, 2, length($1) - 2) - 1700000000;
+           sub(/^\([0-9]+\.[0-9]+\)/, sprintf("(%d.%06d)", int(t), (t - int(t)) * 1000000 + 0.5)); print }' \
+        "$tmp/rec_log.log" >"$tmp/rec_log_z.log"
+    if cmp -s "$tmp/rec_log_z.log" "$tmp/rec_tz.log" && grep -q ' frames 6997 .* bad 0 ' "$tmp/sum_tz.txt"; then
+        ok "pfe_ecu_replay: printed -t z, the same record from 0 s"
+    else
+        bad "pfe_ecu_replay: printed -t z"; cat "$tmp/err" "$tmp/sum_tz.txt"; cmp "$tmp/rec_log_z.log" "$tmp/rec_tz.log"
+    fi
+    # -t d: the time since the frame before, read with --format printed-delta
+    awk '{ t = substr($1, 2, length($1) - 2) - 1700000000; us = int(t * 1000000 + 0.5);
+           d = (NR == 1) ? 0 : us - prev; prev = us;
+           sub(/^\([0-9]+\.[0-9]+\)/, sprintf("(%03d.%06d)", int(d / 1000000), d % 1000000)); print }' \
+        "$tmp/drive_ta.txt" >"$tmp/drive_td.txt"
+    "$ecu_replay" --log "$tmp/drive_td.txt" --format printed-delta --record "$tmp/rec_td.log" \
+        >/dev/null 2>"$tmp/err"
+    if cmp -s "$tmp/rec_tz.log" "$tmp/rec_td.log"; then
+        ok "pfe_ecu_replay: printed -t d with --format printed-delta, the -t z record"
+    else
+        bad "pfe_ecu_replay: printed -t d"; cat "$tmp/err"; head -n 3 "$tmp/drive_td.txt"
+    fi
+    # -t A: 1700000000 s is 2023-11-14 22:13:20 UTC; the drive lasts a minute
+    awk '{ t = substr($1, 2, length($1) - 2) - 1700000000; s = int(t); us = int((t - s) * 1000000 + 0.5);
+           m = 13 + int((20 + s) / 60); sec = (20 + s) % 60;
+           sub(/^\([0-9]+\.[0-9]+\)/, sprintf("(2023-11-14 22:%02d:%02d.%06d)", m, sec, us)); print }' \
+        "$tmp/drive_ta.txt" >"$tmp/drive_tA.txt"
+    "$ecu_replay" --log "$tmp/drive_tA.txt" --record "$tmp/rec_tA.log" >"$tmp/sum_tA.txt" 2>"$tmp/err"
+    if cmp -s "$tmp/rec_log.log" "$tmp/rec_tA.log" && cmp -s "$tmp/sum_log.txt" "$tmp/sum_tA.txt"; then
+        ok "pfe_ecu_replay: printed -t A (dates read as UTC), the same record"
+    else
+        bad "pfe_ecu_replay: printed -t A"; cat "$tmp/err"; head -n 2 "$tmp/drive_tA.txt"
+    fi
+    if command -v log2asc >/dev/null 2>&1; then
+        log2asc -I "$drive" vcan0 >"$tmp/drive_ecu.asc" 2>/dev/null
+        "$ecu_replay" --log "$tmp/drive_ecu.asc" --record "$tmp/rec_asc.log" >/dev/null 2>"$tmp/err"
+        # ASC counts from the start and names channel 1 can0
+        sed 's/ can0 / vcan0 /' "$tmp/rec_asc.log" | cut -d' ' -f2- >"$tmp/rec_asc_f"
+        cut -d' ' -f2- "$tmp/rec_log.log" >"$tmp/rec_log_f"
+        cmp -s "$tmp/rec_log_f" "$tmp/rec_asc_f" && ok "pfe_ecu_replay: ASC, the same frames" ||
+            { bad "pfe_ecu_replay: ASC"; cat "$tmp/err"; }
+    fi
+    mkdir -p "$tmp/adir"
+    expect_exit "pfe_ecu_replay: a directory" 2 "cannot read $tmp/adir: is a directory, not a CAN log" \
+        "$ecu_replay" --log "$tmp/adir"
+    { head -n 3 "$drive"; echo '(1700000000.020000) vcan0 18FEF100#GG'; tail -n +4 "$drive" | head -n 20; } \
+        >"$tmp/badline.log"
+    expect_exit "pfe_ecu_replay: a bad line named with its file, line and reason" 1 \
+        "1 bad lines skipped; the first: $tmp/badline.log:4: bad hex: 'G' in the data" \
+        "$ecu_replay" --log "$tmp/badline.log"
+    sed 's/^([^)]*)  //' "$tmp/drive_ta.txt" | head -n 50 >"$tmp/notime.txt"
+    expect_exit "pfe_ecu_replay: printed output without -t" 2 \
+        "no classic CAN frame in the log (50 lines, 50 bad, 0 not classic CAN); the first bad line: $tmp/notime.txt:1: no timestamp" \
+        "$ecu_replay" --log "$tmp/notime.txt"
+    expect_exit "pfe_ecu_replay: bad --format" 2 "--format wants auto, log" \
+        "$ecu_replay" --log "$drive" --format csv
+fi
+if [ -n "$ecu" ]; then
+    expect_exit "pfe_ecu: an empty interface name" 2 "--iface needs an interface name" \
+        "$ecu" --iface '' --nvm "$tmp/f.nvm"
+    expect_exit "pfe_ecu: no such interface" 1 "no such interface nosuch0" \
+        "$ecu" --iface nosuch0 --nvm "$tmp/f.nvm"
+    expect_exit "pfe_ecu: lo is not CAN" 1 "lo is not a CAN interface" \
+        "$ecu" --iface lo --nvm "$tmp/f.nvm"
+    expect_exit "pfe_ecu: lo is not CAN, --allow-real-bus or not" 1 "lo is not a CAN interface" \
+        "$ecu" --iface lo --nvm "$tmp/f.nvm" --allow-real-bus
+    expect_exit "pfe_ecu: a name too long" 2 "cannot be an interface name" \
+        "$ecu" --iface 0123456789abcdefgh --nvm "$tmp/f.nvm"
+    [ ! -e "$tmp/f.nvm" ] && ok "pfe_ecu: no NVM file written when refused" || bad "pfe_ecu: NVM file"
+fi
 
 echo "test_replay: $failed failure(s)"
 [ "$failed" -eq 0 ]

@@ -8,6 +8,11 @@
 #               pfe_faults must fail on the fault-free record (it can fail)
 #   bad.log     a log with bad lines: both refuse it the same way (exit 1,
 #               same first bad line named)
+#   printed.txt the drive in candump's printed form (-t z, an error frame,
+#               -e's detail line): identical records, the drive's frames
+#   truck.txt   a bench's printed log of a truck (two CCVS1 senders, no SSI,
+#               the engine's LFE1, 200 unread PGNs): identical records,
+#               own-truck rates sent
 #   PLATOON_LOG a whole bundled road (5 trucks from PFE_PlatoonConfig, grade
 #               previews, sensor noise): identical records, judged by
 #               ecu_check, and predictions sent with values
@@ -74,13 +79,45 @@ tail -n +101 "$drive" | head -n 100 >> "$out/bad.log"
 run_both bad "$out/bad.log"
 bad_rc=$?
 if [ "$bad_rc" -ne 1 ] || ! grep -q 'line 101: bad data' "$out/bad.m4.txt" ||
-    ! grep -q 'line 101: bad data' "$out/bad.host.err" || ! grep -q ' bad 2 ' "$out/bad.m4.summary"; then
+    ! grep -q 'bad.log:101: bad hex' "$out/bad.host.err" || ! grep -q ' bad 2 ' "$out/bad.m4.summary"; then
     echo "replay bad: expected exit 1 and line 101 named on both (got $bad_rc):"
     cat "$out/bad.m4.txt" "$out/bad.host.err"
     fail=1
 else
     echo "replay bad: both name it: $(grep 'bad lines' "$out/bad.m4.txt")"
 fi
+
+# The drive as benches record it: candump's printed form, -t z (from the
+# first frame), with a comment and the lines -e writes under an error
+# frame; the same record on both, and the same frames as the candump log's.
+{ echo '# candump -t z -e can0'
+  awk 'NR == 50 { print "(000.100000)  vcan0  20000004   [8]  00 04 00 00 00 00 00 00   ERRORFRAME";
+                  print "\tcontroller-problem{rx-error-warning}" }
+       { t = substr($1, 2, length($1) - 2) - 1700000000; split($3, a, "#"); d = a[2]; s = "";
+         for (i = 1; i <= length(d); i += 2) s = s " " substr(d, i, 2);
+         printf "(%03d.%06d)  %s  %8s   [%d] %s\n", int(t), (t - int(t)) * 1000000 + 0.5, $2, a[1],
+                length(d) / 2, s }' "$drive"; } > "$out/printed.txt"
+run_both printed "$out/printed.txt" || { echo "replay printed: failed"; fail=1; }
+cut -d' ' -f2- "$out/printed.m4.log" > "$out/printed.frames"
+cut -d' ' -f2- "$out/drive.m4.log" > "$out/drive.frames"
+if cmp -s "$out/printed.frames" "$out/drive.frames" && grep -q ' not_classic 1 ' "$out/printed.m4.summary"; then
+    echo "replay printed: the printed form gives the candump log's record (times from 0)"
+else
+    echo "replay printed: the record differs from the candump log's"
+    cat "$out/printed.m4.summary"
+    fail=1
+fi
+# A bench's log as recorded on a truck (tests/host/data/two_senders.txt
+# without the module's own frames): printed form, mid-drive, two CCVS1
+# senders (one not available), no SSI, the engine's LFE1, 200 PGNs the
+# module does not read. Identical on both, and the own-truck estimate
+# (PFE_OwnFuel, 18FF058C) sent with values on a road assumed flat.
+grep -v '^([0-9.]*)  vcan0  ......8C ' "$root/tests/host/data/two_senders.txt" > "$out/truck.txt"
+run_both truck "$out/truck.txt" || { echo "replay truck: failed"; fail=1; }
+n_own=$(grep -c ' 18FF058C#' "$out/truck.m4.log")
+n_own_valid=$(grep ' 18FF058C#' "$out/truck.m4.log" | grep -vc '#FFFF')
+echo "replay truck: $n_own PFE_OwnFuel sent, $n_own_valid with a rate"
+[ "$n_own_valid" -gt $((n_own * 3 / 4)) ] || { echo "replay truck: too few own-truck rates"; fail=1; }
 if [ -n "$platoon" ]; then
     run_both platoon "$platoon" || { echo "replay platoon: failed"; fail=1; }
     "$tools/ecu_check" "$out/platoon.m4.log" || fail=1

@@ -220,7 +220,8 @@ static void test_no_slope_sensor(void **state)
 }
 
 /* No SSI but VDS altitude rising 2 % of the distance driven: after 100 m
- * and more of road the grade in use is 2 % (VDS every 100 ms at 25 m/s). */
+ * and more of road the grade in use is 2 % (VDS every second, as J1939-71
+ * sends it, at 25 m/s). */
 static void test_grade_from_altitude(void **state)
 {
     (void)state;
@@ -229,7 +230,7 @@ static void test_grade_from_altitude(void **state)
     const bus_t b = {25000, false, false, false};
     bool seen = false;
     for (uint32_t k = 0U; k < 1500U; k++) { /* 15 s, 375 m */
-        if (((g_now / 10000U) % 10U) == 5U) {
+        if (((g_now / 10000U) % 100U) == 5U) {
             pfe_can_frame_t f;
             const int32_t alt_mm = 200000 + (int32_t)((g_ecu.odometer_um / 1000U) / 50U);
             const pfe_msg_vds_t m = {{0U, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE},
@@ -250,8 +251,8 @@ static void test_grade_from_altitude(void **state)
     assert_true(seen);
     assert_int_equal(g_ecu.grade_source, PFE_GRADE_SOURCE_ALTITUDE);
     assert_in_range(g_ecu.grade_ppm, 19000, 21000);
-    /* VDS stops: after three periods the road is assumed flat */
-    run(&b, 31U);
+    /* VDS stops: after three periods (3 s) the road is assumed flat */
+    run(&b, 301U);
     assert_int_equal(g_ecu.grade_source, PFE_GRADE_SOURCE_ASSUMED_FLAT);
 }
 

@@ -116,6 +116,32 @@ static void test_speed_plausibility(void **state)
     assert_int_equal(g_in.rejects_in_row, 1);
 }
 
+/* Garbage between the real frames from the same address (a second node
+ * using it, or a sender gone wild): a CCVS1 less than 0.6 of its period
+ * after the last accepted one is rejected, whatever it carries; altitude has
+ * no such rule (a 10 Hz GNSS receiver sends faster than J1939-71 asks). */
+static void test_frames_between_the_real_ones(void **state)
+{
+    (void)state;
+    pfe_input_init(&g_in, PFE_IN_SPEED, PFE_INPUT_NO_SOURCE);
+    assert_int_equal(speed(ENGINE, OK_, 20000, T0), PFE_INPUT_ACCEPTED);
+    assert_int_equal(speed(ENGINE, OK_, 20100, T0 + 50000U), PFE_INPUT_REJECTED); /* half a period */
+    assert_int_equal(speed(ENGINE, OK_, 20000, T0 + P), PFE_INPUT_ACCEPTED);
+    assert_int_equal(speed(ENGINE, OK_, 20000, T0 + P + 59999U), PFE_INPUT_REJECTED);
+    assert_int_equal(speed(ENGINE, OK_, 20000, T0 + P + 60000U), PFE_INPUT_ACCEPTED); /* 0.6 period */
+    /* "error" or "not available" that soon is no more the sender's own */
+    assert_int_equal(speed(ENGINE, ERR, 0, T0 + P + 60000U + 30000U), PFE_INPUT_REJECTED);
+    assert_int_equal(g_in.state, OK_);
+    assert_int_equal(speed(ENGINE, NA, 0, T0 + P + 60000U + 60000U), PFE_INPUT_ACCEPTED);
+    assert_int_equal(g_in.state, NA);
+    assert_int_equal(g_in.rejected, 3);
+    pfe_input_init(&g_in, PFE_IN_ALTITUDE, PFE_INPUT_NO_SOURCE);
+    for (uint32_t k = 0U; k < 20U; k++) {
+        assert_int_equal(pfe_input_take(&g_in, 0x1CU, OK_, 100000 + (int32_t)k, T0 + (k * 100000U)),
+                         PFE_INPUT_ACCEPTED);
+    }
+}
+
 /* 0 -> 250 km/h in one frame, then garbage: three rejections make the input
  * an error; it takes three agreeing frames to be valid again. */
 static void test_persistent_rejection_is_an_error_until_confirmed(void **state)
@@ -302,6 +328,7 @@ int main(void)
         cmocka_unit_test(test_switches_after_three_periods_or_an_error),
         cmocka_unit_test(test_fixed_sender),
         cmocka_unit_test(test_speed_plausibility),
+        cmocka_unit_test(test_frames_between_the_real_ones),
         cmocka_unit_test(test_persistent_rejection_is_an_error_until_confirmed),
         cmocka_unit_test(test_stale_input_restarts),
         cmocka_unit_test(test_grade_plausibility),
