@@ -165,6 +165,9 @@ include mk/thesis.mk
 include mk/roads.mk
 include mk/hardening.mk
 include mk/fuzz.mk
+include mk/nvm.mk
+include mk/san.mk
+include mk/load.mk
 include mk/truck.mk
 M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
 M4_LDFLAGS_IMAGE += -O2 -flto
@@ -305,7 +308,8 @@ check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_O
 test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
       test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
       thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check test-truck-cal \
-      test-foreign-trucks check-replay-calib test-stm32 test-road-import
+      test-foreign-trucks check-replay-calib test-stm32 test-road-import \
+      test-nvm-faults test-san
 
 test-bench-check:
 	@sh tests/bench/bench_check_test.sh

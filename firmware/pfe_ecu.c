@@ -73,11 +73,10 @@ static void identify_position(pfe_ecu_t *ecu)
                                               ecu->platoon.n_vehicles, ecu->platoon.gap_mm));
 }
 
+/* The platoon at once (start-up). Totals carry over: the own truck's to
+ * its new position. */
 static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
 {
-    /* Totals carry over a change of platoon: the own truck's to its new
-     * position. Read before the platoon changes: the estimator reads a
-     * position's total only below the platoon's size. */
     const uint64_t own = pfe_ecu_own_fuel_ul(ecu);
     const uint64_t platoon = pfe_ecu_platoon_fuel_ul(ecu);
     pfe_platoon_config_t pc;
@@ -95,9 +94,83 @@ static int configure(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap
     return PFE_OK;
 }
 
+/*
+ * The platoon of a PFE_PlatoonConfig, built in place over the next ticks
+ * (rebuild_step()): the estimator would start again on it anyway, so it
+ * pauses meanwhile (outputs not available, totals held as they were at the
+ * start); the prediction in progress is abandoned. A second configuration
+ * during the build starts it again, the totals kept.
+ */
+static int rebuild_start(pfe_ecu_t *ecu, uint32_t n, uint32_t position, uint32_t gap_mm)
+{
+    pfe_platoon_config_t pc;
+    platoon_config(ecu, &pc, n, position, gap_mm);
+    if ((pc.n_vehicles != n) || (position >= n) || (pfe_platoon_init_begin(&pc) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    if (!ecu->platoon_building) {
+        ecu->build_own_ul = pfe_ecu_own_fuel_ul(ecu);
+        ecu->build_platoon_ul = pfe_ecu_platoon_fuel_ul(ecu);
+        ecu->build_old_n = ecu->platoon.n_vehicles;
+        ecu->build_old_position = ecu->own_position;
+        ecu->build_old_gap_mm = ecu->platoon.gap_mm;
+        pfe_predict_cancel(&ecu->predict);
+    }
+    ecu->build_n = n;
+    ecu->build_position = position;
+    ecu->build_gap_mm = gap_mm;
+    ecu->build_done = 0U;
+    ecu->platoon_building = true;
+    return PFE_OK;
+}
+
+/* One tick's share of the build: PFE_ECU_REBUILD_PER_TICK positions, or the
+ * aggregates and the estimator started on them (PFE_ECU_REBUILD_PER_TICK
+ * trucks: about 5,000 Cortex-M4 instructions; the aggregates 3,000). A
+ * configuration that fails half-way brings the old platoon back at once.
+ * Returns whether it did any work. */
+static bool rebuild_step(pfe_ecu_t *ecu)
+{
+    if (!ecu->platoon_building) {
+        return false;
+    }
+    pfe_platoon_config_t pc;
+    platoon_config(ecu, &pc, ecu->build_n, ecu->build_position, ecu->build_gap_mm);
+    int rc = PFE_OK;
+    bool finished = false;
+    if (ecu->build_done < ecu->build_n) {
+        rc = pfe_platoon_init_positions(&ecu->platoon, &pc, ecu->build_done, PFE_ECU_REBUILD_PER_TICK);
+        const uint32_t left = ecu->build_n - ecu->build_done;
+        ecu->build_done += (left < PFE_ECU_REBUILD_PER_TICK) ? left : PFE_ECU_REBUILD_PER_TICK;
+    } else {
+        rc = pfe_platoon_init_finish(&ecu->platoon, &pc);
+        finished = true;
+    }
+    if (rc != PFE_OK) {
+        ecu->platoon_building = false;
+        ecu->config.state = PFE_SIG_OUT_OF_RANGE;
+        (void)configure(ecu, ecu->build_old_n, ecu->build_old_position, ecu->build_old_gap_mm);
+        (void)pfe_estimator_set_fuel_used_ul(&ecu->est, (int32_t)ecu->own_position, ecu->build_own_ul);
+        (void)pfe_estimator_set_fuel_used_ul(&ecu->est, PFE_EST_PLATOON, ecu->build_platoon_ul);
+    } else if (finished) {
+        ecu->platoon_building = false;
+        (void)pfe_estimator_init(&ecu->est, &ecu->platoon);
+        ecu->own_position = ecu->build_position;
+        (void)pfe_estimator_set_fuel_used_ul(&ecu->est, (int32_t)ecu->build_position, ecu->build_own_ul);
+        (void)pfe_estimator_set_fuel_used_ul(&ecu->est, PFE_EST_PLATOON, ecu->build_platoon_ul);
+        identify_position(ecu);
+        ecu->degraded = false;
+    } else {
+        /* positions built, more to come */
+    }
+    return true;
+}
+
 /* The own truck's mass or auxiliary power changed (CVW, identification):
- * the same platoon rebuilt in place; the estimator keeps its filter and
- * totals, the prediction restarts. Returns whether the model changed. */
+ * the own truck's position of the same platoon built again with it, and
+ * the aggregates (about 3,600 Cortex-M4 instructions); the estimator keeps
+ * its filter and totals, the prediction restarts. During a build, the build
+ * starts again with it. Returns whether the model changed. */
 static bool remodel_own_truck(pfe_ecu_t *ecu, uint32_t mass_kg, uint32_t aux_w)
 {
     pfe_vehicle_calib_t c = ecu->own_calib;
@@ -109,9 +182,14 @@ static bool remodel_own_truck(pfe_ecu_t *ecu, uint32_t mass_kg, uint32_t aux_w)
     }
     const pfe_vehicle_calib_t old = ecu->own_calib;
     ecu->own_calib = c;
+    if (ecu->platoon_building) {
+        (void)rebuild_start(ecu, ecu->build_n, ecu->build_position, ecu->build_gap_mm);
+        return true;
+    }
     pfe_platoon_config_t pc;
     platoon_config(ecu, &pc, ecu->platoon.n_vehicles, ecu->own_position, ecu->platoon.gap_mm);
-    if (pfe_platoon_init(&ecu->platoon, &pc) != PFE_OK) {
+    if ((pfe_platoon_init_positions(&ecu->platoon, &pc, ecu->own_position, 1U) != PFE_OK) ||
+        (pfe_platoon_init_finish(&ecu->platoon, &pc) != PFE_OK)) {
         ecu->own_calib = old; /* a platoon the old values built: build it again */
         platoon_config(ecu, &pc, ecu->platoon.n_vehicles, ecu->own_position, ecu->platoon.gap_mm);
         (void)pfe_platoon_init(&ecu->platoon, &pc);
@@ -119,6 +197,23 @@ static bool remodel_own_truck(pfe_ecu_t *ecu, uint32_t mass_kg, uint32_t aux_w)
     }
     pfe_predict_cancel(&ecu->predict);
     return true;
+}
+
+/* CVW's mass: the last of a tick waits for apply_own_mass() after the queue. */
+static void note_own_mass(pfe_ecu_t *ecu, uint32_t mass_kg)
+{
+    ecu->mass_next_kg = mass_kg;
+    ecu->mass_next_pending = true;
+}
+
+/* The tick's last CVW mass, once (remodel_own_truck()). */
+static void apply_own_mass(pfe_ecu_t *ecu)
+{
+    if (!ecu->mass_next_pending) {
+        return;
+    }
+    ecu->mass_next_pending = false;
+    (void)remodel_own_truck(ecu, ecu->mass_next_kg, ecu->own_calib.power_aux_w);
 }
 
 /* Identified values differ from those in use by this much before the model
@@ -303,10 +398,26 @@ static void on_request(pfe_ecu_t *ecu, const pfe_can_frame_t *f)
     }
 }
 
+/* The last PFE_PlatoonConfig of a tick wins: the frame waits, undecoded,
+ * for apply_platoon_config() after the queue, which rebuilds the model at
+ * most once per tick. */
 static void on_platoon_config(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t rx_us)
 {
+    ecu->config_frame = *f;
+    ecu->config_frame_us = rx_us;
+    ecu->config_frame_pending = true;
+}
+
+/* The tick's last PFE_PlatoonConfig: decoded, and when it changes the
+ * platoon, a rebuild started (rebuild_start()). */
+static void apply_platoon_config(pfe_ecu_t *ecu)
+{
+    if (!ecu->config_frame_pending) {
+        return;
+    }
+    ecu->config_frame_pending = false;
     pfe_msg_platoon_config_t m;
-    if (pfe_codec_decode_platoon_config(f, &m) < 0) {
+    if (pfe_codec_decode_platoon_config(&ecu->config_frame, &m) < 0) {
         count_up(&ecu->count.rx_rejected, 1U);
         return;
     }
@@ -318,20 +429,20 @@ static void on_platoon_config(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint64_t
     if ((st == PFE_SIG_VALID) && (pfe_codec_platoon_gap_mm(&m, &gap_mm) != PFE_SIG_VALID)) {
         st = PFE_SIG_NOT_AVAILABLE;
     }
-    input_update(&ecu->config, st, rx_us);
+    input_update(&ecu->config, st, ecu->config_frame_us);
     if (st != PFE_SIG_VALID) {
         return;
     }
-    const bool changed = ecu->degraded || (m.n_vehicles.value != ecu->platoon.n_vehicles) ||
-                         (m.own_position.value != ecu->own_position) ||
-                         (gap_mm != ecu->platoon.gap_mm);
+    /* Against the platoon being built, if one is, else the one running. */
+    const bool building = ecu->platoon_building;
+    const uint32_t n = building ? ecu->build_n : ecu->platoon.n_vehicles;
+    const uint32_t position = building ? ecu->build_position : ecu->own_position;
+    const uint32_t gap = building ? ecu->build_gap_mm : ecu->platoon.gap_mm;
+    const bool changed = (ecu->degraded && !building) || (m.n_vehicles.value != n) ||
+                         (m.own_position.value != position) || (gap_mm != gap);
     ecu->platoon_msg = m;
-    if (changed) {
-        if (configure(ecu, m.n_vehicles.value, m.own_position.value, gap_mm) == PFE_OK) {
-            ecu->degraded = false;
-        } else {
-            ecu->config.state = PFE_SIG_OUT_OF_RANGE;
-        }
+    if (changed && (rebuild_start(ecu, m.n_vehicles.value, m.own_position.value, gap_mm) != PFE_OK)) {
+        ecu->config.state = PFE_SIG_OUT_OF_RANGE;
     }
 }
 
@@ -410,7 +521,7 @@ static void on_cvw(pfe_ecu_t *ecu, const pfe_can_frame_t *f, uint8_t sa, uint64_
     const pfe_sig_u32_t gcw = m.gross_combination_kg;
     if (take_input(ecu, PFE_IN_MASS, sa, gcw.state, (int32_t)gcw.value, rx_us) &&
         (ecu->in[PFE_IN_MASS].state == PFE_SIG_VALID)) {
-        (void)remodel_own_truck(ecu, gcw.value, ecu->own_calib.power_aux_w);
+        note_own_mass(ecu, gcw.value);
         ecu->cvw_mass = true;
         ecu->mass_source = (uint8_t)PFE_MASS_SOURCE_CVW;
     }
@@ -559,12 +670,15 @@ static uint32_t sat_u32(uint64_t v)
 }
 
 /* Step 5 of the tick: the prediction's share of work. */
-static void predict(pfe_ecu_t *ecu, uint64_t now_us)
+static void predict(pfe_ecu_t *ecu, uint64_t now_us, bool work)
 {
     const bool speed_ok = ecu->in[PFE_IN_SPEED].state == PFE_SIG_VALID;
     if (speed_ok && (ecu->speed_mm_s > 0)) {
         /* mm/s over 10 ms = 10 um per mm/s */
         ecu->preview_travelled_um += (uint64_t)ecu->speed_mm_s * (PFE_ECU_TICK_US / 1000U);
+    }
+    if (!work) {
+        return; /* a burst's tick: the prediction goes on at the next */
     }
     if ((ecu->predict.phase == PFE_PREDICT_IDLE) && speed_ok &&
         (ecu->preview_buf.phase == PFE_PREVIEW_READY) &&
@@ -827,13 +941,28 @@ static void age_inputs(pfe_ecu_t *ecu, uint64_t now_us)
 uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint32_t tx_cap)
 {
     ecu->now_us = now_us;
-    ecu->speed_fresh = false;
-    while (ecu->rxq_count > 0U) {
+    /* A speed sample that comes while a platoon is built (the estimator
+     * paused) waits for the estimator's next step: warm-up loses none. */
+    if (!ecu->platoon_building) {
+        ecu->speed_fresh = false;
+    }
+    /* Bounded work: PFE_ECU_RX_PER_TICK frames (PFE_ECU_RX_LIGHT while a
+     * platoon is being built), then either a share of the rebuild or of the
+     * prediction, only in a tick that decoded at most PFE_ECU_RX_LIGHT.
+     * What a burst leaves waits for the next tick. */
+    const uint32_t cap = ecu->platoon_building ? PFE_ECU_RX_LIGHT : PFE_ECU_RX_PER_TICK;
+    uint32_t drained = 0U;
+    while ((ecu->rxq_count > 0U) && (drained < cap)) {
         const uint32_t k = ecu->rxq_head;
         ecu->rxq_head = (ecu->rxq_head + 1U) % PFE_ECU_RX_QUEUE_LEN;
         ecu->rxq_count--;
         on_frame(ecu, &ecu->rxq[k], ecu->rxq_us[k]);
+        drained++;
     }
+    apply_platoon_config(ecu);
+    apply_own_mass(ecu);
+    const bool light = drained <= PFE_ECU_RX_LIGHT;
+    const bool rebuilt = light && rebuild_step(ecu);
     age_inputs(ecu, now_us);
     const bool speed_ok = ecu->in[PFE_IN_SPEED].state == PFE_SIG_VALID;
     if (speed_ok && (ecu->speed_mm_s > 0)) {
@@ -847,8 +976,9 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
     const pfe_est_input_t in = {
         ecu->speed_mm_s, speed_ok, ecu->speed_fresh, grade_ppm, grade_ok,
     };
-    ecu->out = pfe_estimator_step(&ecu->est, &in);
-    predict(ecu, now_us);
+    /* While a platoon is being built the estimator pauses: not available. */
+    ecu->out = ecu->platoon_building ? NULL : pfe_estimator_step(&ecu->est, &in);
+    predict(ecu, now_us, light && !rebuilt);
 
     uint32_t n = 0U;
     pfe_can_frame_t f;
@@ -938,22 +1068,45 @@ uint32_t pfe_ecu_nvm_slot(const pfe_ecu_t *ecu)
     return pfe_nvm_next_slot(ecu->nvm_last_slot);
 }
 
-void pfe_ecu_nvm_take(pfe_ecu_t *ecu, pfe_nvm_state_t *out)
+void pfe_ecu_nvm_take(const pfe_ecu_t *ecu, pfe_nvm_state_t *out)
 {
-    ecu->nvm_sequence++;
-    out->sequence = ecu->nvm_sequence;
+    out->sequence = ecu->nvm_sequence + 1U;
     out->own_fuel_ul = pfe_ecu_own_fuel_ul(ecu);
     out->platoon_fuel_ul = pfe_ecu_platoon_fuel_ul(ecu);
-    ecu->nvm_last_slot = (int)pfe_nvm_next_slot(ecu->nvm_last_slot);
-    ecu->last_save_us = ecu->now_us;
+}
+
+void pfe_ecu_nvm_written(pfe_ecu_t *ecu, int result)
+{
+    const bool completed = result == 0;
+    if (completed) {
+        ecu->nvm_sequence++;
+        ecu->nvm_last_slot = (int)pfe_nvm_next_slot(ecu->nvm_last_slot);
+        ecu->last_save_us = ecu->now_us;
+        ecu->nvm_fail_streak = 0U;
+        ecu->nvm_failing = false;
+    } else {
+        /* Slot, sequence and interval stay: the next tick writes the same
+         * slot again, and the other slot keeps the last completed record. */
+        count_up(&ecu->count.nvm_write_failures, 1U);
+        count_up(&ecu->nvm_fail_streak, 1U);
+        if (ecu->nvm_fail_streak >= PFE_ECU_NVM_FAILING_AFTER) {
+            ecu->nvm_failing = true;
+        }
+    }
 }
 
 uint64_t pfe_ecu_own_fuel_ul(const pfe_ecu_t *ecu)
 {
+    if (ecu->platoon_building) {
+        return ecu->build_own_ul;
+    }
     return pfe_estimator_fuel_used_ul(&ecu->est, (int32_t)ecu->own_position);
 }
 
 uint64_t pfe_ecu_platoon_fuel_ul(const pfe_ecu_t *ecu)
 {
+    if (ecu->platoon_building) {
+        return ecu->build_platoon_ul;
+    }
     return pfe_estimator_fuel_used_ul(&ecu->est, PFE_EST_PLATOON);
 }

@@ -6,13 +6,25 @@
  *   1. drains the bounded receive queue (frames queued by pfe_ecu_receive()),
  *      matching J1939 PGNs with priority and source address masked, and
  *      decodes and validates each input (range, not available, error);
+ *      at most PFE_ECU_RX_PER_TICK frames a tick, PFE_ECU_RX_LIGHT while a
+ *      platoon is being built (the rest waits for the next tick); of
+ *      several PFE_PlatoonConfig in one tick the last wins, decoded once,
+ *      and so does the last new mass of the own truck (CVW);
+ *      a new platoon is built in place over the next ticks,
+ *      PFE_ECU_REBUILD_PER_TICK trucks a tick, then its aggregates in a
+ *      tick of their own (32 trucks: 5 ticks), the estimator paused
+ *      meanwhile (it starts again on a new platoon anyway: outputs not
+ *      available, totals held);
  *   2. ages the inputs: a message older than three of its periods makes its
  *      inputs not available (PFE_ECU_STALE_PERIODS);
  *   3. steps the estimator (pfe_estimator.h);
  *   4. sends each output on its J1939 schedule (can_dbc/pfe.dbc), plus the
  *      answers to requests (PGN 59904) and the address claim (J1939-81);
  *   5. gives the prediction over the grade preview (pfe_predict.h) its
- *      share of the tick, PFE_ECU_PREDICT_UNITS: once a second a new
+ *      share of the tick, PFE_ECU_PREDICT_UNITS, unless the tick did a
+ *      share of a rebuild or decoded more than PFE_ECU_RX_LIGHT frames
+ *      (a burst: then it waits a tick, so that a tick's work stays within
+ *      20,000 Cortex-M4 instructions, `make bench`): once a second a new
  *      prediction starts from the current speed and the distance travelled
  *      since the preview's header, a new preview or platoon abandons the one
  *      in progress, and PFE_FuelPrediction sends the latest (not available
@@ -26,8 +38,11 @@
  * L, a rate above 3212.75 L/h, a prediction above 642.55 L or 6425.5 s).
  *
  * Total fuel used survives a reset through two NVM slots (pfe_nvm.h): the
- * main loop reads them before pfe_ecu_init(), and writes
- * pfe_ecu_nvm_take() to pfe_ecu_nvm_slot() whenever pfe_ecu_nvm_due().
+ * main loop reads them before pfe_ecu_init(), writes pfe_ecu_nvm_take() to
+ * pfe_ecu_nvm_slot() whenever pfe_ecu_nvm_due(), and reports the write's
+ * result with pfe_ecu_nvm_written(): only a completed write moves the next
+ * save to the other slot, so the slot holding the last completed record is
+ * never written while a failing write is retried.
  *
  * Time: microseconds of one monotonic clock, passed in; frames carry their
  * receive time on the same clock. Memory: all in pfe_ecu_t (caller owned).
@@ -51,6 +66,10 @@
 
 #define PFE_ECU_TICK_US 10000U
 #define PFE_ECU_RX_QUEUE_LEN 64U       /* frames between two ticks; more are dropped and counted */
+#define PFE_ECU_RX_PER_TICK 32U        /* frames one tick decodes at most; the rest waits a tick */
+#define PFE_ECU_RX_LIGHT 16U           /* a tick that decodes more skips the rebuild's and the
+                                        * prediction's share; while a rebuild runs, the most a tick decodes */
+#define PFE_ECU_REBUILD_PER_TICK 8U    /* platoon positions a tick builds (pfe_platoon_init_positions()) */
 #define PFE_ECU_TX_MAX 16U             /* frames one tick may send at most */
 #define PFE_ECU_STALE_PERIODS 3U
 #define PFE_ECU_CLAIM_WAIT_US 250000U  /* J1939-81: wait after claiming before sending */
@@ -59,6 +78,7 @@
 #define PFE_ECU_PREDICT_PERIOD_US 1000000U /* a new prediction from the current position */
 #define PFE_ECU_PREDICT_MAX_AGE_US 3000000U /* an older prediction is sent as not available */
 #define PFE_ECU_DEFAULT_SET_SPEED_MM_S 25000 /* 90 km/h, until PFE_PlatoonConfig gives one */
+#define PFE_ECU_NVM_FAILING_AFTER 3U   /* failed NVM writes in a row that set nvm_failing */
 #define PFE_ECU_RECLAIM_MIN_US 1000000U /* an address conflict re-claims at most once a second */
 
 /* Whether the module sends LFE1 and HRLFC, the PGNs the engine itself sends
@@ -149,7 +169,7 @@ typedef struct {
     uint32_t overruns;                 /* ticks the main loop reported late */
     uint32_t requests_answered;
     uint32_t claims_lost;
-    uint32_t nvm_write_failures;       /* saves the main loop reported failed */
+    uint32_t nvm_write_failures;       /* NVM writes the main loop reported failed */
 } pfe_ecu_counters_t;
 
 typedef struct {
@@ -196,9 +216,27 @@ typedef struct {
     int32_t grade_ppm;                 /* grade in use (valid when grade_source < NONE) */
     bool grade_saturated;              /* the last pitch was beyond +-PFE_GRADE_MAX_PPM */
     pfe_msg_platoon_config_t platoon_msg;
+    /* the tick's last PFE_PlatoonConfig, decoded and applied once after the queue */
+    pfe_can_frame_t config_frame;
+    uint64_t config_frame_us;
+    bool config_frame_pending;
     pfe_preview_t preview_buf;
     /* model */
     pfe_platoon_t platoon;
+    /* a platoon being built in place over ticks (PFE_ECU_REBUILD_PER_TICK trucks a tick) */
+    bool platoon_building;
+    uint32_t build_n;
+    uint32_t build_position;
+    uint32_t build_gap_mm;
+    uint32_t build_done;               /* positions built; build_n: the aggregates next */
+    uint64_t build_own_ul;             /* totals at the build's start, held during it */
+    uint64_t build_platoon_ul;
+    uint32_t build_old_n;              /* the platoon before, for a build that fails */
+    uint32_t build_old_position;
+    uint32_t build_old_gap_mm;
+    /* the tick's last new mass of the own truck (CVW), applied once after the queue */
+    uint32_t mass_next_kg;
+    bool mass_next_pending;
     pfe_estimator_t est;
     /* prediction over the preview */
     pfe_predict_t predict;
@@ -215,10 +253,12 @@ typedef struct {
     uint64_t now_us;
     uint32_t tick;
     uint64_t last_save_us;
-    uint32_t nvm_sequence;
-    int nvm_last_slot;
+    uint32_t nvm_sequence;             /* of the last completed NVM write */
+    int nvm_last_slot;                 /* slot of the last completed write, -1 for none */
+    uint32_t nvm_fail_streak;          /* failed writes since the last completed one */
+    bool nvm_failing;                  /* PFE_ECU_NVM_FAILING_AFTER failures in a row, until a write
+                                        * completes (PFE_DeviceStatus NvmWriteFailing) */
     uint32_t outputs_clamped;          /* bit per output whose last frame the codec clamped */
-    bool nvm_failing;                  /* the last save failed (PFE_DeviceStatus NvmWriteFailing) */
     /* device health from the HAL (PFE_DeviceStatus); not available until reported */
     pfe_ecu_bus_state_t bus;
     bool bus_known;
@@ -267,11 +307,28 @@ void pfe_ecu_note_bus_state(pfe_ecu_t *ecu, const pfe_ecu_bus_state_t *bus);
  * enumeration is taken as PFE_RESET_OTHER). */
 void pfe_ecu_note_reset_cause(pfe_ecu_t *ecu, pfe_reset_cause_t cause);
 
-/* NVM: due once per save interval. pfe_ecu_nvm_take() fills the record to
- * write to pfe_ecu_nvm_slot() and restarts the interval. */
+/*
+ * NVM save path, in this order on one tick:
+ *   pfe_ecu_nvm_due()      true once the save interval has run since the last
+ *                          completed write (and so again on every tick after
+ *                          a failed one: the retry);
+ *   pfe_ecu_nvm_slot()     the slot to write: the other one than the last
+ *                          completed write's; unchanged by a failure;
+ *   pfe_ecu_nvm_take()     fills the record: the totals now, the sequence
+ *                          after the last completed write's; changes nothing;
+ *   pfe_ecu_nvm_written()  the write's result: 0 commits it (sequence and
+ *                          slot advance, the interval restarts, nvm_failing
+ *                          clears); anything else counts
+ *                          count.nvm_write_failures, keeps slot, sequence and
+ *                          interval, and the PFE_ECU_NVM_FAILING_AFTER-th
+ *                          failure in a row sets nvm_failing.
+ * A reset before pfe_ecu_nvm_written() loses nothing but the write: the boot
+ * restores the last completed record. Each O(1).
+ */
 bool pfe_ecu_nvm_due(const pfe_ecu_t *ecu);
 uint32_t pfe_ecu_nvm_slot(const pfe_ecu_t *ecu);
-void pfe_ecu_nvm_take(pfe_ecu_t *ecu, pfe_nvm_state_t *out);
+void pfe_ecu_nvm_take(const pfe_ecu_t *ecu, pfe_nvm_state_t *out);
+void pfe_ecu_nvm_written(pfe_ecu_t *ecu, int result);
 
 /* Fuel used so far, uL: own vehicle and platoon. */
 uint64_t pfe_ecu_own_fuel_ul(const pfe_ecu_t *ecu);

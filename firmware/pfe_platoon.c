@@ -39,12 +39,51 @@ static uint32_t weakest(const pfe_platoon_config_t *cfg, int use_power)
     return best;
 }
 
+int pfe_platoon_init_begin(const pfe_platoon_config_t *cfg)
+{
+    if ((cfg == NULL) || (cfg->n_vehicles < 1U) || (cfg->n_vehicles > PFE_MAX_VEHICLES) ||
+        (pfe_calib_check_env(cfg->env) != PFE_OK) || (pfe_calib_check_drag(cfg->drag) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    return PFE_OK;
+}
+
+int pfe_platoon_init_positions(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg, uint32_t first,
+                               uint32_t count)
+{
+    if ((pl == NULL) || (pfe_platoon_init_begin(cfg) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    const uint32_t n = cfg->n_vehicles;
+    const uint32_t left = (first < n) ? (n - first) : 0U;
+    const uint32_t end = first + ((count < left) ? count : left);
+    for (uint32_t i = first; i < end; i++) {
+        const pfe_vehicle_calib_t *c = cfg->vehicle[i];
+        const uint32_t phi = (c == NULL) ? 0U : pfe_drag_reduction_bp(cfg->drag, i, n, cfg->gap_mm);
+        if (pfe_vehicle_init(&pl->position[i], c, cfg->env, phi) != PFE_OK) {
+            return PFE_EINVAL;
+        }
+    }
+    return PFE_OK;
+}
+
 int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
 {
-    if ((pl == NULL) || (cfg == NULL) || (cfg->n_vehicles < 1U) ||
-        (cfg->n_vehicles > PFE_MAX_VEHICLES) || (pfe_calib_check_env(cfg->env) != PFE_OK) ||
-        (pfe_calib_check_drag(cfg->drag) != PFE_OK)) {
+    if (pfe_platoon_init_positions(pl, cfg, 0U, PFE_MAX_VEHICLES) != PFE_OK) {
         return PFE_EINVAL;
+    }
+    return pfe_platoon_init_finish(pl, cfg);
+}
+
+int pfe_platoon_init_finish(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
+{
+    if ((pl == NULL) || (pfe_platoon_init_begin(cfg) != PFE_OK)) {
+        return PFE_EINVAL;
+    }
+    for (uint32_t i = 0U; i < cfg->n_vehicles; i++) {
+        if (cfg->vehicle[i] == NULL) {
+            return PFE_EINVAL;
+        }
     }
     const uint32_t n = cfg->n_vehicles;
     uint64_t mass = 0U;
@@ -57,10 +96,6 @@ int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
     obj->roll_q32 = 0;
     for (uint32_t i = 0U; i < n; i++) {
         const pfe_vehicle_calib_t *c = cfg->vehicle[i];
-        const uint32_t phi = (c == NULL) ? 0U : pfe_drag_reduction_bp(cfg->drag, i, n, cfg->gap_mm);
-        if (pfe_vehicle_init(&pl->position[i], c, cfg->env, phi) != PFE_OK) {
-            return PFE_EINVAL;
-        }
         /* Sums of per-vehicle coefficients (eq. 4.6, 4.8, 3.7): the per-vehicle
          * bounds of pfe_vehicle.c times 32 stay below 2^36. */
         obj->air_q32 += pl->position[i].air_q32;

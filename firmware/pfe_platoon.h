@@ -80,6 +80,20 @@ void pfe_platoon_config_uniform(pfe_platoon_config_t *cfg, uint32_t n_vehicles, 
  */
 int pfe_platoon_init(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg);
 
+/*
+ * pfe_platoon_init() in pieces, for a caller that spreads the work over its
+ * ticks (about 600 Cortex-M4 instructions a position, 2,000 the rest):
+ * begin checks cfg (n_vehicles, env, drag) and touches nothing; positions
+ * builds the trucks first .. first + count - 1 (those below n_vehicles);
+ * finish builds the aggregates from them. begin, positions over every
+ * position in any order, then finish, all with the same cfg, give the same
+ * *pl as pfe_platoon_init(); each returns PFE_OK or PFE_EINVAL as it would.
+ */
+int pfe_platoon_init_begin(const pfe_platoon_config_t *cfg);
+int pfe_platoon_init_positions(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg, uint32_t first,
+                               uint32_t count);
+int pfe_platoon_init_finish(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg);
+
 /* The object model's largest wheel force at a speed v (0 .. PFE_SPEED_MAX_MM_S)
  * with v2 = v * v at hand, for the platoon's object and formation drag c
  * (formation_air_q32, at most PFE_FORMATION_AIR_MAX_Q32): min(Pmax_platoon /

@@ -90,5 +90,7 @@ int hal_ecu_loop_save(hal_ecu_loop_t *loop)
     const uint32_t slot = pfe_ecu_nvm_slot(loop->ecu);
     pfe_ecu_nvm_take(loop->ecu, &rec);
     pfe_nvm_encode(&rec, bytes);
-    return hal_nvm_write(loop->nvm, slot, bytes);
+    const int r = hal_nvm_write(loop->nvm, slot, bytes);
+    pfe_ecu_nvm_written(loop->ecu, r);
+    return r;
 }

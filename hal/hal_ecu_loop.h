@@ -15,7 +15,9 @@
  *   2. frames the backend dropped since the last pass are reported;
  *   3. the ECU ticks; what it sends goes to the handle, refusals are
  *      reported as transmit drops;
- *   4. fuel totals are saved to NVM when due.
+ *   4. fuel totals are saved to NVM when due, the result reported to the
+ *      ECU (pfe_ecu_nvm_written()): a failed write is retried on the next
+ *      pass, to the same slot.
  * The caller owns the timing: what counts as late, and waiting.
  */
 #ifndef HAL_ECU_LOOP_H
@@ -60,8 +62,8 @@ int hal_ecu_loop_init(hal_ecu_loop_t *loop, pfe_ecu_t *ecu, const pfe_ecu_config
 /* One pass at deadline now_us (see above). Returns how many frames it sent. */
 uint32_t hal_ecu_loop_step(hal_ecu_loop_t *loop, uint64_t now_us);
 
-/* Writes the fuel totals now (at the end of a run): 0 or the backend's
- * HAL_E* code. */
+/* Writes the fuel totals now (when due, and at the end of a run) and
+ * reports the result to the ECU: 0 or the backend's HAL_E* code. */
 int hal_ecu_loop_save(hal_ecu_loop_t *loop);
 
 #endif /* HAL_ECU_LOOP_H */

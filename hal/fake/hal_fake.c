@@ -124,6 +124,18 @@ void hal_fake_nvm_init(hal_nvm_t *nvm)
     memset(nvm->slot, 0xFF, sizeof nvm->slot);
     nvm->tear_after = -1;
     nvm->writes = 0U;
+    nvm->fail_writes = 0U;
+    nvm->fail_bytes = 0U;
+    nvm->failed = 0U;
+    nvm->last_slot = 0U;
+    memset(nvm->last_buf, 0xFF, sizeof nvm->last_buf);
+    nvm->last_result = 0;
+}
+
+void hal_fake_nvm_fail_next_writes(hal_nvm_t *nvm, uint32_t count, uint32_t bytes)
+{
+    nvm->fail_writes = count;
+    nvm->fail_bytes = (bytes < PFE_NVM_RECORD_SIZE) ? bytes : PFE_NVM_RECORD_SIZE;
 }
 
 void hal_fake_nvm_tear_next_write(hal_nvm_t *nvm, uint32_t bytes)
@@ -146,14 +158,29 @@ int hal_nvm_write(hal_nvm_t *nvm, uint32_t slot, const uint8_t buf[PFE_NVM_RECOR
         return HAL_EINVAL;
     }
     nvm->writes++;
+    nvm->last_slot = slot;
+    memcpy(nvm->last_buf, buf, PFE_NVM_RECORD_SIZE);
+    int32_t partial = -1;
     if (nvm->tear_after >= 0) {
-        /* The bytes a reset leaves: the head new, the tail as erased flash. */
-        const uint32_t n = (uint32_t)nvm->tear_after;
+        partial = nvm->tear_after;
+        nvm->tear_after = -1;
+    } else if (nvm->fail_writes > 0U) {
+        partial = (int32_t)nvm->fail_bytes;
+        nvm->fail_writes--;
+    } else {
+        /* a complete write */
+    }
+    if (partial >= 0) {
+        /* The bytes a reset or a failed program leaves: the head new, the
+         * tail as erased flash. */
+        const uint32_t n = (uint32_t)partial;
         memcpy(nvm->slot[slot], buf, n);
         memset(&nvm->slot[slot][n], 0xFF, PFE_NVM_RECORD_SIZE - n);
-        nvm->tear_after = -1;
+        nvm->failed++;
+        nvm->last_result = HAL_EIO;
         return HAL_EIO;
     }
     memcpy(nvm->slot[slot], buf, PFE_NVM_RECORD_SIZE);
+    nvm->last_result = 0;
     return 0;
 }

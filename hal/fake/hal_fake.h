@@ -63,6 +63,13 @@ struct hal_nvm {
     uint8_t slot[PFE_NVM_SLOTS][PFE_NVM_RECORD_SIZE];
     int32_t tear_after;              /* < 0: writes complete; else bytes written before a "reset" */
     uint32_t writes;
+    uint32_t fail_writes;            /* writes still to fail (hal_fake_nvm_fail_next_writes()) */
+    uint32_t fail_bytes;             /* bytes each failing write programs */
+    uint32_t failed;                 /* writes that returned an error */
+    /* The last write as asked for, for a test to judge what it left. */
+    uint32_t last_slot;
+    uint8_t last_buf[PFE_NVM_RECORD_SIZE];
+    int last_result;
 };
 
 /* All slots erased (0xFF), writes complete. */
@@ -70,5 +77,10 @@ void hal_fake_nvm_init(hal_nvm_t *nvm);
 /* The next write stops after `bytes` bytes and fails with HAL_EIO, as a
  * reset in the middle of the write would leave it. */
 void hal_fake_nvm_tear_next_write(hal_nvm_t *nvm, uint32_t bytes);
+/* The next `count` writes fail with HAL_EIO without a reset, as flash that
+ * does not verify: each erases the slot and programs its first `bytes`
+ * bytes (at most PFE_NVM_RECORD_SIZE), the rest reads 0xFF. A pending tear
+ * goes first. */
+void hal_fake_nvm_fail_next_writes(hal_nvm_t *nvm, uint32_t count, uint32_t bytes);
 
 #endif /* HAL_FAKE_H */

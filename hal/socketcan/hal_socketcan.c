@@ -344,6 +344,15 @@ int hal_socketcan_open(hal_can_t **out, const char *ifname, unsigned flags)
         (setsockopt(can->fd, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on) != 0)) {
         rc = HAL_EIO;
     }
+    /* Room for about HAL_SOCKETCAN_RCVBUF_BYTES / 800 frames (the kernel's
+     * charge per CAN frame on 64-bit Linux): with the loop reading every
+     * 10 ms, a stall of a second at a full bus's rate. As root the system's
+     * rmem_max does not cap it; what is still lost is counted
+     * (SO_RXQ_OVFL, rx_dropped). */
+    const int rcvbuf = HAL_SOCKETCAN_RCVBUF_BYTES;
+    if ((rc == 0) && (setsockopt(can->fd, SOL_SOCKET, SO_RCVBUFFORCE, &rcvbuf, sizeof rcvbuf) != 0)) {
+        (void)setsockopt(can->fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
+    }
     if (rc == 0) {
         rc = apply_filters(can);
     }

@@ -51,6 +51,9 @@
 
 #include "hal/hal_can.h"
 
+/* Receive buffer each handle asks for (SO_RCVBUFFORCE, else SO_RCVBUF). */
+#define HAL_SOCKETCAN_RCVBUF_BYTES (1024 * 1024)
+
 /* Flags of hal_socketcan_open. */
 #define HAL_SOCKETCAN_ALLOW_REAL_BUS 0x1U /* allow sending on a non-virtual interface */
 #define HAL_SOCKETCAN_RX_ONLY 0x2U        /* never send: any interface, send refused */

@@ -14,6 +14,12 @@
  *                             pfe_ecu_tick), CCVS1 every 10th tick, SSI every tick
  *   ecu_tick_burst            a tick with a full receive queue: every input
  *                             message and requests at once
+ *   ecu_tick_burst_max        the worst tick of bursts of every mix (platoon
+ *                             configurations up to 32 trucks, preview headers
+ *                             and data, requests, floods of PGNs the module
+ *                             does not read, and random mixes of them), each
+ *                             a full receive queue while a prediction runs,
+ *                             the burst's tick and the five after it
  *   predict_whole_n5          one whole prediction with its bounds (three runs
  *                             of the object model) over the 12 km hilly road
  *                             as a grade preview, 5 trucks, as the module
@@ -491,13 +497,129 @@ static int bench_predict(void)
     return 0;
 }
 
+/* Frame `kind` of a burst: 0 CCVS1, 1 SSI, 2 a request for an output, 3 a
+ * platoon configuration (2 .. 32 trucks, a new one each time), 4 a preview
+ * header, 5 a preview data frame, 6 a PGN the module does not read, 7 VDS,
+ * 8 CVW (a new mass each time), 9 another node's LFE1, 10 its HRLFC; from
+ * two senders. */
+#define BURST_KINDS 11U
+static void burst_frame(uint32_t kind, uint32_t k, pfe_can_frame_t *f)
+{
+    if (kind == 0U) {
+        const pfe_msg_ccvs1_t v = {{25000, PFE_SIG_VALID}};
+        (void)pfe_codec_encode_ccvs1(f, &v, 0x00U);
+    } else if (kind == 1U) {
+        const pfe_msg_ssi_t ssi = {{1000, PFE_SIG_VALID}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
+        (void)pfe_codec_encode_ssi(f, &ssi, 0x00U);
+    } else if (kind == 2U) {
+        static const uint32_t pgn[5] = {PFE_PGN_LFE1, PFE_PGN_PLATOON_FUEL, PFE_PGN_HRLFC,
+                                        PFE_PGN_FUEL_PREDICTION, PFE_PGN_STATUS};
+        (void)pfe_codec_encode_request(f, pgn[k % 5U], PFE_J1939_ADDR_GLOBAL, 0x00U);
+    } else if (kind == 3U) {
+        const uint32_t n = ((k % 2U) == 0U) ? PFE_MAX_VEHICLES : (2U + (k % 30U));
+        const pfe_msg_platoon_config_t pc = {{n, PFE_SIG_VALID}, {k % n, PFE_SIG_VALID},
+                                             {8000U + (k * 100U), PFE_SIG_VALID},
+                                             {0U, PFE_SIG_NOT_AVAILABLE}, {25000, PFE_SIG_VALID}};
+        (void)pfe_codec_encode_platoon_config(f, &pc, 0x00U);
+    } else if ((kind == 4U) || (kind == 5U)) {
+        (void)preview_frame((kind == 4U) ? 0U : (1U + (k % 8U)), f);
+    } else if (kind == 7U) {
+        const pfe_msg_vds_t v = {{90000U, PFE_SIG_VALID}, {25000, PFE_SIG_VALID},
+                                 {(int32_t)(k % 3000U), PFE_SIG_VALID}, {100000 + (int32_t)(k * 10U), PFE_SIG_VALID}};
+        (void)pfe_codec_encode_vds(f, &v, (uint8_t)(k % 2U));
+    } else if (kind == 8U) {
+        const pfe_msg_cvw_t w = {{20000U + ((k % 200U) * 100U), PFE_SIG_VALID},
+                                 {30000U + ((k % 200U) * 100U), PFE_SIG_VALID}};
+        (void)pfe_codec_encode_cvw(f, &w, (uint8_t)(k % 2U));
+    } else if (kind == 9U) {
+        const pfe_msg_lfe1_t l = {{9000000U + k, PFE_SIG_VALID}};
+        (void)pfe_codec_encode_lfe1(f, &l, (uint8_t)(k % 2U));
+    } else if (kind == 10U) {
+        const pfe_msg_hrlfc_t h = {{0U, PFE_SIG_NOT_AVAILABLE}, {1000000U + k, PFE_SIG_VALID}};
+        (void)pfe_codec_encode_hrlfc(f, &h, (uint8_t)(k % 2U));
+    } else {
+        /* EEC1 (PGN 61444), read by nobody here */
+        f->id = PFE_CAN_EFF_FLAG | 0x0CF00400UL;
+        f->dlc = 8U;
+        for (uint32_t j = 0U; j < 8U; j++) {
+            f->data[j] = (uint8_t)(k + j);
+        }
+    }
+}
+
+static int bench_burst(void)
+{
+    const pfe_ecu_config_t cfg = {
+        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
+        .name = 0x80A0000000000001ULL,
+        .save_interval_ms = 10000U,
+        .vehicle = &pfe_default_vehicle,
+        .env = &pfe_default_env,
+        .drag = &pfe_default_drag,
+        .default_vehicles = PFE_MAX_VEHICLES, /* the dearest rebuild */
+        .default_position = 0U,
+        .default_gap_mm = 10000U,
+        .cruise = &pfe_default_cruise,
+        .default_set_speed_mm_s = 25000,
+    };
+    uint64_t now = 1000000U;
+    if (pfe_ecu_init(&s_ecu, &cfg, NULL, -1, now) != PFE_OK) {
+        return -1;
+    }
+    static pfe_can_frame_t burst[PFE_ECU_RX_QUEUE_LEN];
+    uint64_t worst = 0U;
+    uint32_t rng = 1U;
+    /* Mixes 0 .. BURST_KINDS - 1: all of one kind; then random kinds. */
+    for (uint32_t mix = 0U; mix < (BURST_KINDS + 60U); mix++) {
+        /* Back to a module that predicts: speed and grade, a whole preview,
+         * ticks until a prediction runs. */
+        uint32_t sent_frames = 0U;
+        bool more = true;
+        for (uint32_t tick = 0U; tick < 150U; tick++, now += PFE_ECU_TICK_US) {
+            pfe_can_frame_t rx[12];
+            uint32_t n_rx = 0U;
+            burst_frame(1U, tick, &rx[n_rx++]);
+            if ((tick % 10U) == 0U) {
+                burst_frame(0U, tick, &rx[n_rx++]);
+            }
+            for (uint32_t j = 0U; (j < 10U) && more; j++) {
+                more = preview_frame(sent_frames, &rx[n_rx]);
+                if (more) {
+                    n_rx++;
+                    sent_frames++;
+                }
+            }
+            (void)ecu_tick(now, rx, n_rx);
+        }
+        for (uint32_t k = 0U; k < PFE_ECU_RX_QUEUE_LEN; k++) {
+            uint32_t kind = mix;
+            if (mix >= BURST_KINDS) {
+                rng = (rng * 1103515245U) + 12345U;
+                kind = (rng >> 16) % BURST_KINDS;
+            }
+            burst_frame(kind, k + (mix * PFE_ECU_RX_QUEUE_LEN), &burst[k]);
+        }
+        /* Random mixes come in three sizes: the most frames a tick that also
+         * predicts decodes, one more, and a full queue. */
+        const uint32_t len = (mix < BURST_KINDS) ? PFE_ECU_RX_QUEUE_LEN
+                             : (((mix % 3U) == 0U) ? PFE_ECU_RX_LIGHT
+                                : (((mix % 3U) == 1U) ? (PFE_ECU_RX_LIGHT + 1U) : PFE_ECU_RX_QUEUE_LEN));
+        for (uint32_t tick = 0U; tick < 6U; tick++, now += PFE_ECU_TICK_US) {
+            const uint64_t insns = (tick == 0U) ? ecu_tick(now, burst, len) : ecu_tick(now, burst, 2U);
+            worst = (insns > worst) ? insns : worst;
+        }
+    }
+    hal_mps2_write_bench("ecu_tick_burst_max", worst, "insn");
+    return 0;
+}
+
 int main(void)
 {
     hal_mps2_icount_start();
     if ((bench_estimator(5U, "est_step_n5_mean", "est_step_n5_max") != 0) ||
         (bench_estimator(PFE_MAX_VEHICLES, "est_step_n32_mean", "est_step_n32_max") != 0) ||
         (bench_sim() != 0) || (bench_ecu() != 0) || (bench_predict() != 0) ||
-        (bench_identify() != 0) || (bench_inputs() != 0)) {
+        (bench_identify() != 0) || (bench_inputs() != 0) || (bench_burst() != 0)) {
         hal_mps2_write_str("bench: failed\n");
         return 1;
     }

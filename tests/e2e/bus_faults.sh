@@ -34,7 +34,7 @@ check() { # NAME CONDITION-RESULT(0/1) DETAIL
 # It records all but the flood's id (0x123: an inverted filter), so that the
 # flood cannot overflow its socket and hide the module's frames; a second
 # candump counts the flood.
-(while :; do candump -L vcan0,123~7FF 2>>"$tmp/candump.err"; sleep 0.05; done) >"$tmp/cap.log" &
+(while :; do candump -r 8388608 -L vcan0,123~7FF 2>>"$tmp/candump.err"; sleep 0.05; done) >"$tmp/cap.log" &
 dump=$!
 "$dir/pfe_ecu" --iface vcan0 --nvm "$tmp/nvm.bin" --save-interval-ms 1000 2>"$tmp/ecu.err" &
 ecu=$!
@@ -47,7 +47,7 @@ ip link set vcan0 down
 sleep 2
 ip link set vcan0 up
 sleep 6
-candump -L vcan0,123:7FF >"$tmp/flood.log" 2>/dev/null &
+candump -r 8388608 -L vcan0,123:7FF >"$tmp/flood.log" 2>/dev/null &
 fdump=$!
 cangen vcan0 -g 0 -I 123 -L 8 -n 100000 2>/dev/null
 sleep 0.5

@@ -21,7 +21,7 @@ tmp=$(mktemp -d)
 # recorded to $tmp/NAME.capture.log.
 run() {
     name=$1 log=$2
-    candump -L vcan0 > "$tmp/$name.capture.log" &
+    candump -r 8388608 -L vcan0 > "$tmp/$name.capture.log" &
     dump=$!
     "$dir/pfe_ecu" --iface vcan0 --nvm "$tmp/$name.nvm" --save-interval-ms 1000 &
     ecu=$!

@@ -21,11 +21,11 @@
 #     log2asc) and as candump's printed output (-t a and -t z, recorded while
 #     the drive was replayed) replays to the same frames as its candump log
 #   pacing (must-show 4): the drive's first 15 s in real time, by pfe_replay
-#     (as it comes, then with --spin-us 2000) and by canplayer, recorded by
-#     candump -L: lateness of the kernel's receive timestamps against the
-#     log's schedule (lateness_check), p99 and max printed; pfe_replay's p99
-#     must stay under 500 ms and its run last the slice's 15 s (a replayer
-#     sending early, late by whole frames or at the wrong speed would not)
+#     (its default pacing) and by canplayer side by side, three rounds, each
+#     recorded by candump -L: lateness of the kernel's receive timestamps
+#     against the log's schedule (lateness_check), p99 and max printed;
+#     pfe_replay's p99 must be at most canplayer's in two rounds of three,
+#     and each of its runs last the slice's 15 s
 #   guard (must-show 6): lo, and an slcan interface on a pseudo-terminal,
 #     refused without --allow-real-bus: exit 2, the message, nothing sent
 # Exit status: the number of failed checks.
@@ -92,13 +92,32 @@ replay_capture() {
     ifc=$2
     n=$3
     shift 3
-    candump -L -n "$n" -T 20000 "$ifc" >"$tmp/cap.log" &
+    # candump asks for 8 MiB of receive buffer (about 10,000 frames, so a
+    # busy machine does not make it drop) and reports what the kernel still
+    # dropped (-d: DROPCOUNT lines, taken out of the log below).
+    candump -r 8388608 -d -L -n "$n" -T 20000 "$ifc" >"$tmp/cap.raw" &
     pid=$!
     wait_listening "$pid" "$ifc" 1 || return 1
     # shellcheck disable=SC2046 # one assignment per interface
     "$rp" --quiet -I "$log" "$@" $(sed -n 's/^ *([^)]*) *\([^ ]*\) .*/\1/p' "$log" | sort -u |
-        sed "s/^/$ifc=/") || { kill "$pid"; return 1; }
-    wait "$pid" || { echo "candump: exit $? ($(wc -l <"$tmp/cap.log") of $n frames)"; return 1; }
+        sed "s/^/$ifc=/") 2>"$tmp/rp_summary.txt" || { cat "$tmp/rp_summary.txt"; kill "$pid"; return 1; }
+    cd_rc=0
+    wait "$pid" || cd_rc=$?
+    grep -v '^DROPCOUNT' "$tmp/cap.raw" >"$tmp/cap.log"
+    # candump -d: "DROPCOUNT: dropped N CAN frame(s) on 'IF' socket (total drops T)"
+    rx_drops=$(sed -n 's/.*total drops \([0-9]*\).*/\1/p' "$tmp/cap.raw" | tail -n 1)
+    rx_drops=${rx_drops:-0}
+    sent=$(sed -n 's/^pfe_replay: \([0-9]*\) sent.*/\1/p' "$tmp/rp_summary.txt")
+    tx_drops=$(sed -n 's/.* \([0-9]*\) dropped.*/\1/p' "$tmp/rp_summary.txt" | head -n 1)
+    got=$(wc -l <"$tmp/cap.log")
+    echo "by side: pfe_replay sent ${sent:-?} of $n, dropped ${tx_drops:-?} (transmit queue);" \
+        "candump received $got, the kernel dropped $rx_drops at its socket;" \
+        "unexplained $((n - ${tx_drops:-0} - rx_drops - got))"
+    # A round trip is for identical frames: a frame lost at either side
+    # leaves nothing to compare it with, so it fails, saying where it went.
+    [ "$cd_rc" -eq 0 ] || { echo "candump: exit $cd_rc ($got of $n frames)"; return 1; }
+    [ "$rx_drops" -eq 0 ] || { echo "candump's socket dropped $rx_drops frames (receive buffer full)"; return 1; }
+    [ "${tx_drops:-0}" -eq 0 ] || { echo "pfe_replay dropped $tx_drops frames (transmit queue full)"; return 1; }
 }
 
 # Round trip of candump log $1 on interface $2 (at speed $3, default SPEED).
@@ -116,11 +135,11 @@ round_trip() {
 # (the same drive in the printed format, for the next checks).
 drive_three_ways() {
     n=$(grep -c '^ *(' "$dir/drive.log")
-    candump -L -n "$n" -T 20000 vcan0 >"$tmp/drive_cap.log" &
+    candump -r 8388608 -L -n "$n" -T 20000 vcan0 >"$tmp/drive_cap.log" &
     p1=$!
-    candump -t a -n "$n" -T 20000 vcan0 >"$tmp/drive_a.txt" &
+    candump -r 8388608 -t a -n "$n" -T 20000 vcan0 >"$tmp/drive_a.txt" &
     p2=$!
-    candump -t z -n "$n" -T 20000 vcan0 >"$tmp/drive_z.txt" &
+    candump -r 8388608 -t z -n "$n" -T 20000 vcan0 >"$tmp/drive_z.txt" &
     p3=$!
     wait_listening "$p1" vcan0 3 || return 1
     "$rp" -I "$dir/drive.log" --speed "$SPEED" --quiet || return 1
@@ -144,7 +163,7 @@ drive_asc() {
     log2asc -I "$tmp/drive_cap.log" vcan0 >"$tmp/drive.asc" || return 1
     echo "ASC by log2asc, e.g.: $(sed -n 5p "$tmp/drive.asc")"
     n=$(grep -c '^ *(' "$dir/drive.log")
-    candump -L -n "$n" -T 20000 vcan0 >"$tmp/cap.log" &
+    candump -r 8388608 -L -n "$n" -T 20000 vcan0 >"$tmp/cap.log" &
     pid=$!
     wait_listening "$pid" vcan0 1 || return 1
     "$rp" --quiet -I "$tmp/drive.asc" vcan0=can0 || { kill "$pid"; return 1; }
@@ -155,7 +174,7 @@ drive_asc() {
 # ---------------------------------------------------------------- logs candump wrote of cangen
 
 cangen_log() {
-    candump -L -n 300 -T 20000 vcan0 >"$tmp/cangen.log" &
+    candump -r 8388608 -L -n 300 -T 20000 vcan0 >"$tmp/cangen.log" &
     pid=$!
     wait_listening "$pid" vcan0 1 || return 1
     cangen vcan0 -n 100 -g 1 && cangen vcan0 -n 100 -g 1 -e && cangen vcan0 -n 100 -g 1 -R ||
@@ -168,7 +187,7 @@ cangen_log() {
 cangen_fd_log() {
     ip link set dev vcan1 down && ip link set dev vcan1 mtu 72 && ip link set dev vcan1 up ||
         { echo "cannot give vcan1 the CAN FD MTU"; return 1; }
-    candump -L -n 200 -T 20000 vcan1 >"$tmp/cangen_fd.log" &
+    candump -r 8388608 -L -n 200 -T 20000 vcan1 >"$tmp/cangen_fd.log" &
     pid=$!
     wait_listening "$pid" vcan1 1 || return 1
     cangen vcan1 -n 200 -g 1 -m || { kill "$pid"; return 1; }
@@ -184,45 +203,64 @@ p99_of() { sed -n 's/.* p99 \([0-9]*\) us max \([0-9]*\) us.*/\1/p' "$1"; }
 max_of() { sed -n 's/.* p99 \([0-9]*\) us max \([0-9]*\) us.*/\2/p' "$1"; }
 uptime_cs() { awk '{ printf "%d\n", $1 * 100 }' /proc/uptime; }
 
-# Replays the slice with command "$2 ..." while candump -L records it;
-# lateness_check's line in $tmp/late_$1.txt, the run's wall time (in
-# hundredths of a second) in $tmp/dur_$1.txt.
-pace_run() {
-    tag=$1
-    shift
-    candump -L -n "$n" -T 20000 vcan0 >"$tmp/pace_$tag.log" &
-    pid=$!
-    wait_listening "$pid" vcan0 1 || return 1
+# One round: pfe_replay (its default pacing) on vcan0 and canplayer on
+# vcan1 replay the slice side by side, at the same time, each recorded by its
+# own candump -L: the stalls of this machine (QEMU without KVM, a shared
+# host) then hit both alike, which one after the other they would not.
+# lateness_check's lines in $tmp/late_{pfe_replay,canplayer}_$1.txt,
+# pfe_replay's wall time (hundredths of a second) in $tmp/dur_$1.txt.
+pace_round() {
+    r=$1
+    candump -r 8388608 -L -n "$n" -T 20000 vcan0 >"$tmp/pace_rp_$r.log" &
+    c1=$!
+    candump -r 8388608 -L -n "$n" -T 20000 vcan1 >"$tmp/pace_cp_$r.log" &
+    c2=$!
+    wait_listening "$c1" vcan0 1 || return 1
+    wait_listening "$c2" vcan1 1 || return 1
     t0=$(uptime_cs)
-    "$@" 2>"$tmp/summary_$tag.txt" || { cat "$tmp/summary_$tag.txt"; kill "$pid"; return 1; }
-    echo $(($(uptime_cs) - t0)) >"$tmp/dur_$tag.txt"
-    wait "$pid" || { echo "candump: exit $? ($(wc -l <"$tmp/pace_$tag.log") of $n frames)"; return 1; }
-    "$dir/lateness_check" "$tmp/slice.log" "$tmp/pace_$tag.log" >"$tmp/late_$tag.txt" || return 1
-    echo "$tag: received by candump: $(cat "$tmp/late_$tag.txt"); run $(cat "$tmp/dur_$tag.txt")0 ms"
+    ( "$rp" --quiet -I "$tmp/slice.log" 2>"$tmp/summary_$r.txt"; echo $? >"$tmp/rc_rp_$r" ) &
+    p1=$!
+    canplayer -I "$tmp/slice.log" vcan1=vcan0 &
+    p2=$!
+    wait "$p1"
+    echo $(($(uptime_cs) - t0)) >"$tmp/dur_$r.txt"
+    wait "$p2" || { echo "canplayer: exit $?"; return 1; }
+    [ "$(cat "$tmp/rc_rp_$r")" -eq 0 ] || { cat "$tmp/summary_$r.txt"; return 1; }
+    wait "$c1" || { echo "candump vcan0: exit $? ($(wc -l <"$tmp/pace_rp_$r.log") of $n frames)"; return 1; }
+    wait "$c2" || { echo "candump vcan1: exit $? ($(wc -l <"$tmp/pace_cp_$r.log") of $n frames)"; return 1; }
+    "$dir/lateness_check" "$tmp/slice.log" "$tmp/pace_rp_$r.log" >"$tmp/late_pfe_replay_$r.txt" || return 1
+    "$dir/lateness_check" "$tmp/slice.log" "$tmp/pace_cp_$r.log" >"$tmp/late_canplayer_$r.txt" || return 1
+    a=$(p99_of "$tmp/late_pfe_replay_$r.txt")
+    b=$(p99_of "$tmp/late_canplayer_$r.txt")
+    echo "round $r: pfe_replay p99 $a us max $(max_of "$tmp/late_pfe_replay_$r.txt") us;" \
+        "canplayer p99 $b us max $(max_of "$tmp/late_canplayer_$r.txt") us;" \
+        "ratio $(awk -v a="$a" -v b="$b" 'BEGIN { printf "%.2f", a / b }');" \
+        "pfe_replay's own view: $(grep lateness "$tmp/summary_$r.txt" | cut -d' ' -f2-);" \
+        "run $(cat "$tmp/dur_$r.txt")0 ms"
+    echo "$a $b" >>"$tmp/pace_p99.txt"
 }
 
+# Three rounds in this one VM run; pfe_replay must pace at least as well as
+# canplayer: its p99 lateness at most canplayer's in the median round (in
+# two rounds of three). No absolute time: this machine's jitter is not the
+# replayer's. Each pfe_replay run must also last the slice's length (a
+# replayer sending early, late by whole frames or at the wrong speed would
+# not).
 pacing() {
     "$rp" --dry-run -t --end "$SLICE_S" -I "$dir/drive.log" >"$tmp/slice.log" 2>/dev/null || return 1
     n=$(wc -l <"$tmp/slice.log")
-    echo "the drive's first $SLICE_S s: $n frames, in real time, one after the other by:"
-    pace_run pfe_replay "$rp" --quiet -I "$tmp/slice.log" || return 1
-    echo "pfe_replay: its own view, send against deadline: $(grep lateness "$tmp/summary_pfe_replay.txt" | cut -d' ' -f2-)"
-    pace_run pfe_replay_spin "$rp" --quiet --spin-us 2000 -I "$tmp/slice.log" || return 1
-    echo "pfe_replay --spin-us 2000: its own view: $(grep lateness "$tmp/summary_pfe_replay_spin.txt" | cut -d' ' -f2-)"
-    pace_run canplayer canplayer -I "$tmp/slice.log" || return 1
-    echo "pacing: pfe_replay p99 $(p99_of "$tmp/late_pfe_replay.txt") us max $(max_of "$tmp/late_pfe_replay.txt") us;" \
-        "canplayer p99 $(p99_of "$tmp/late_canplayer.txt") us max $(max_of "$tmp/late_canplayer.txt") us"
-    echo "pacing: pfe_replay --spin-us 2000 p99 $(p99_of "$tmp/late_pfe_replay_spin.txt") us max $(max_of "$tmp/late_pfe_replay_spin.txt") us"
-    # Sending early or late by whole frames, or at the wrong speed, would
-    # show as lateness of the order of the log's 15 s; this machine's own
-    # jitter (QEMU without KVM) stays far below 500 ms.
-    for tag in pfe_replay pfe_replay_spin; do
-        p99=$(p99_of "$tmp/late_$tag.txt")
-        dur=$(cat "$tmp/dur_$tag.txt")
-        [ -n "$p99" ] && [ "$p99" -lt 500000 ] || { echo "$tag: p99 not under 500 ms"; return 1; }
+    echo "the drive's first $SLICE_S s: $n frames, in real time, pfe_replay and canplayer side by side, 3 rounds:"
+    : >"$tmp/pace_p99.txt"
+    for r in 1 2 3; do
+        pace_round "$r" || return 1
+        dur=$(cat "$tmp/dur_$r.txt")
         [ "$dur" -ge $((SLICE_S * 100 - 10)) ] && [ "$dur" -le $((SLICE_S * 100 + 150)) ] ||
-            { echo "$tag: the run took ${dur}0 ms for ${SLICE_S} s of log"; return 1; }
+            { echo "round $r: pfe_replay took ${dur}0 ms for ${SLICE_S} s of log"; return 1; }
     done
+    wins=$(awk '$1 <= $2 { w++ } END { print w + 0 }' "$tmp/pace_p99.txt")
+    median=$(awk '{ print $1 / $2 }' "$tmp/pace_p99.txt" | sort -n | sed -n 2p)
+    echo "pacing: pfe_replay's p99 at most canplayer's in $wins of 3 rounds; median ratio $median (must be <= 1)"
+    [ "$wins" -ge 2 ]
 }
 
 # ---------------------------------------------------------------- the real-bus guard

@@ -188,6 +188,7 @@ static void save_if_due(fz_t *z)
     FUZZ_CHECK(pfe_nvm_decode(z->nvm[slot], &back) == PFE_OK);
     FUZZ_CHECK((back.sequence == s.sequence) && (back.own_fuel_ul == s.own_fuel_ul) &&
                (back.platoon_fuel_ul == s.platoon_fuel_ul));
+    pfe_ecu_nvm_written(&z->ecu, 0);
     FUZZ_CHECK(!pfe_ecu_nvm_due(&z->ecu));
     z->saved = s;
     z->nvm_written = true;

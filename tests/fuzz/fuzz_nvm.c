@@ -160,6 +160,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             pfe_ecu_nvm_take(&g_ecu, &s);
             FUZZ_CHECK(s.sequence == ((pick >= 0) ? got.sequence + 1U : 1U));
             FUZZ_CHECK((s.own_fuel_ul == own) && (s.platoon_fuel_ul == platoon));
+            pfe_ecu_nvm_written(&g_ecu, 0);
             pick = (int)next;
             got = s;
         }

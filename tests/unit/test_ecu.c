@@ -532,6 +532,183 @@ static void test_platoon_config_switches_the_model(void **state)
     assert_int_equal(next_status(true, true).platoon_config_input, PFE_SIG_NOT_AVAILABLE);
 }
 
+/* A burst of configurations in one tick: the last one wins, decoded once,
+ * and its platoon is built over the next ticks (PFE_ECU_REBUILD_PER_TICK
+ * trucks a tick, then the switch) while the old one runs; a malformed last
+ * one changes nothing. */
+static void test_platoon_config_burst_last_wins(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < 16U; k++) {
+        pfe_can_frame_t f;
+        const pfe_msg_platoon_config_t m = {{3U + (k % 4U), PFE_SIG_VALID}, {k % 3U, PFE_SIG_VALID},
+                                            {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
+                                            {25000, PFE_SIG_VALID}};
+        assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+        pfe_ecu_receive(&g_ecu, &f, g_now);
+    }
+    tick(false, false);
+    assert_int_equal(g_ecu.count.rx_frames, 16);
+    /* decoded, started and its 6 trucks built; the default platoon (1
+     * truck) still runs */
+    assert_int_equal(g_ecu.platoon.n_vehicles, 1);
+    assert_true(g_ecu.platoon_building);
+    tick(false, false); /* the aggregates, and the switch */
+    /* the 16th: 3 + 15 % 4 = 6 trucks, position 15 % 3 = 0 */
+    assert_false(g_ecu.platoon_building);
+    assert_int_equal(g_ecu.platoon.n_vehicles, 6);
+    assert_int_equal(g_ecu.own_position, 0);
+    assert_false(g_ecu.degraded);
+    assert_int_equal(g_ecu.config.state, PFE_SIG_VALID);
+    /* The same platoon, built at once, is the same model. */
+    pfe_platoon_t once;
+    pfe_platoon_config_t pc;
+    pfe_platoon_config_uniform(&pc, 6U, 10000U, &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag);
+    memset(&once, 0, sizeof once);
+    assert_int_equal(pfe_platoon_init(&once, &pc), PFE_OK);
+    assert_memory_equal(&once, &g_ecu.platoon, sizeof once);
+    const uint32_t rejected = g_ecu.count.rx_rejected;
+    pfe_can_frame_t f;
+    const pfe_msg_platoon_config_t m = {{4U, PFE_SIG_VALID}, {1U, PFE_SIG_VALID},
+                                        {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
+                                        {25000, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    f.dlc = 3U;
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    for (uint32_t k = 0U; k < 3U; k++) {
+        tick(true, true);
+    }
+    assert_int_equal(g_ecu.count.rx_rejected, rejected + 1U);
+    assert_false(g_ecu.platoon_building);
+    assert_int_equal(g_ecu.platoon.n_vehicles, 6);
+    assert_int_equal(g_ecu.own_position, 0);
+}
+
+/* A configuration whose trucks cannot all be built (a calibration of
+ * position 5 the platoon refuses): the old platoon comes back, totals kept,
+ * the configuration said out of range. */
+static void test_platoon_build_that_fails_keeps_the_old_one(void **state)
+{
+    (void)state;
+    pfe_ecu_config_t c = config();
+    static pfe_vehicle_calib_t bad;
+    bad = pfe_default_vehicle;
+    bad.mass_kg = 0U;
+    c.vehicle_at[5] = &bad;
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < 100U; k++) {
+        tick(true, true);
+    }
+    const uint64_t own = pfe_ecu_own_fuel_ul(&g_ecu);
+    assert_in_range(own, 1000U, 20000U);
+    pfe_can_frame_t f;
+    const pfe_msg_platoon_config_t m = {{6U, PFE_SIG_VALID}, {0U, PFE_SIG_VALID},
+                                        {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
+                                        {25000, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    tick(true, true);
+    assert_false(g_ecu.platoon_building);
+    assert_int_equal(g_ecu.config.state, PFE_SIG_OUT_OF_RANGE);
+    assert_int_equal(g_ecu.platoon.n_vehicles, 1);
+    assert_int_equal(g_ecu.own_position, 0);
+    assert_true(g_ecu.degraded);
+    assert_int_equal(pfe_ecu_own_fuel_ul(&g_ecu), own);
+}
+
+/* The own truck's mass (CVW) during a build: the build starts again with
+ * it, and the platoon it ends with has it. */
+static void test_mass_during_a_build(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    pfe_can_frame_t f;
+    const pfe_msg_platoon_config_t m = {{20U, PFE_SIG_VALID}, {3U, PFE_SIG_VALID},
+                                        {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
+                                        {25000, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    tick(false, false); /* started, trucks 0 .. 7 */
+    assert_true(g_ecu.platoon_building);
+    assert_int_equal(g_ecu.build_done, 8);
+    const pfe_msg_cvw_t w = {{8000U, PFE_SIG_VALID}, {30000U, PFE_SIG_VALID}};
+    assert_true(pfe_codec_encode_cvw(&f, &w, OTHER_SA) >= 0);
+    pfe_ecu_receive(&g_ecu, &f, g_now);
+    tick(false, false); /* the mass: started again, trucks 0 .. 7 */
+    assert_true(g_ecu.platoon_building);
+    assert_int_equal(g_ecu.build_done, 8);
+    assert_int_equal(g_ecu.own_calib.mass_kg, 30000);
+    tick(false, false); /* 8 .. 15 */
+    tick(false, false); /* 16 .. 19 */
+    assert_true(g_ecu.platoon_building);
+    tick(false, false); /* the aggregates */
+    assert_false(g_ecu.platoon_building);
+    assert_int_equal(g_ecu.platoon.n_vehicles, 20);
+    assert_int_equal(g_ecu.own_position, 3);
+    /* 19 trucks of 40 t and ours of 30 t */
+    assert_int_equal(g_ecu.platoon.mass_kg, 19U * 40000U + 30000U);
+    assert_int_equal(g_ecu.mass_source, PFE_MASS_SOURCE_CVW);
+}
+
+/* A failed NVM write: retried on the next tick, to the same slot, with the
+ * same sequence; the third failure in a row sets nvm_failing, a completed
+ * write clears it and moves on. */
+static void test_nvm_write_failure_is_retried(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config(); /* saves every 1 s */
+    const pfe_nvm_state_t restored = {7U, 5000U, 6000U};
+    start(&c, &restored, 1);
+    for (uint32_t k = 0U; (k < 200U) && !pfe_ecu_nvm_due(&g_ecu); k++) {
+        tick(true, true);
+    }
+    assert_true(pfe_ecu_nvm_due(&g_ecu));
+    assert_int_equal(pfe_ecu_nvm_slot(&g_ecu), 0);
+    for (uint32_t fail = 1U; fail <= 4U; fail++) {
+        pfe_nvm_state_t rec;
+        memset(&rec, 0xA5, sizeof rec);
+        pfe_ecu_nvm_take(&g_ecu, &rec);
+        assert_int_equal(rec.sequence, 8);
+        pfe_ecu_nvm_written(&g_ecu, HAL_EIO);
+        assert_int_equal(g_ecu.count.nvm_write_failures, fail);
+        assert_int_equal(g_ecu.nvm_failing, fail >= 3U);
+        assert_true(pfe_ecu_nvm_due(&g_ecu));
+        assert_int_equal(pfe_ecu_nvm_slot(&g_ecu), 0);
+        tick(true, true);
+    }
+    pfe_nvm_state_t rec;
+    pfe_ecu_nvm_take(&g_ecu, &rec);
+    assert_int_equal(rec.sequence, 8);
+    pfe_ecu_nvm_written(&g_ecu, 0);
+    assert_false(g_ecu.nvm_failing);
+    assert_false(pfe_ecu_nvm_due(&g_ecu));
+    assert_int_equal(pfe_ecu_nvm_slot(&g_ecu), 1);
+    assert_int_equal(g_ecu.count.nvm_write_failures, 4);
+    pfe_ecu_nvm_take(&g_ecu, &rec);
+    assert_int_equal(rec.sequence, 9);
+}
+
+/* A full queue: PFE_ECU_RX_PER_TICK frames this tick, the rest the next. */
+static void test_full_queue_spreads_over_two_ticks(void **state)
+{
+    (void)state;
+    const pfe_ecu_config_t c = config();
+    start(&c, NULL, -1);
+    for (uint32_t k = 0U; k < PFE_ECU_RX_QUEUE_LEN; k++) {
+        send_pitch(0);
+    }
+    const uint32_t before = g_ecu.count.rx_frames;
+    tick(false, false);
+    assert_int_equal(g_ecu.count.rx_frames - before, 32); /* PFE_ECU_RX_PER_TICK */
+    tick(false, false);
+    assert_int_equal(g_ecu.count.rx_frames - before, 64);
+    assert_int_equal(g_ecu.count.rx_dropped, 0);
+}
+
 /* 1000 resets at pseudo-random instants, some in the middle of an NVM write. */
 static void test_resets_never_lose_more_than_one_save_interval(void **state)
 {
@@ -575,6 +752,7 @@ static void test_resets_never_lose_more_than_one_save_interval(void **state)
                     break;
                 }
                 assert_int_equal(hal_nvm_write(&nvm, to, bytes), 0);
+                pfe_ecu_nvm_written(&g_ecu, 0);
                 saved = rec.own_fuel_ul;
             }
         }
@@ -603,6 +781,11 @@ int main(void)
         cmocka_unit_test(test_counters_reach_the_status_message),
         cmocka_unit_test(test_receive_filters),
         cmocka_unit_test(test_platoon_config_switches_the_model),
+        cmocka_unit_test(test_platoon_config_burst_last_wins),
+        cmocka_unit_test(test_full_queue_spreads_over_two_ticks),
+        cmocka_unit_test(test_platoon_build_that_fails_keeps_the_old_one),
+        cmocka_unit_test(test_mass_during_a_build),
+        cmocka_unit_test(test_nvm_write_failure_is_retried),
         cmocka_unit_test(test_prediction_over_a_preview),
         cmocka_unit_test(test_resets_never_lose_more_than_one_save_interval),
     };

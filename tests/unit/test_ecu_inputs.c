@@ -209,9 +209,12 @@ static void test_platoon_config_it_cannot_use(void **state)
     assert_int_equal(g_ecu.platoon.n_vehicles, 1);
     assert_true(g_ecu.degraded);
 
-    /* A valid one: 3 trucks 12 m apart, ours second. */
+    /* A valid one: 3 trucks 12 m apart, ours second; built in two ticks
+     * (PFE_ECU_REBUILD_PER_TICK trucks, then the switch). */
     m = platoon_config(3U, 1U, 12000U);
     send_platoon_config(&m);
+    tick();
+    assert_int_equal(g_ecu.platoon.n_vehicles, 1);
     tick();
     assert_int_equal(g_ecu.config.state, PFE_SIG_VALID);
     assert_int_equal(g_ecu.platoon.n_vehicles, 3);
@@ -239,6 +242,7 @@ static void test_platoon_config_it_cannot_use(void **state)
     m.time_gap_ms.value = 800U;
     m.time_gap_ms.state = PFE_SIG_VALID;
     send_platoon_config(&m);
+    tick();
     tick();
     assert_int_equal(g_ecu.config.state, PFE_SIG_VALID);
     assert_int_equal(g_ecu.platoon.gap_mm, 20000);

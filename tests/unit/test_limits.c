@@ -564,11 +564,19 @@ static void test_ecu_total_survives_the_largest_platoon_shrinking(void **state)
     pfe_can_frame_t f;
     assert_int_equal(pfe_codec_encode_platoon_config(&f, &c, 0x00U), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
+    /* Built in two ticks: the truck, then the switch. */
+    g_ntx = pfe_ecu_tick(&g_ecu, g_now, g_tx, PFE_ECU_TX_MAX);
+    assert_int_equal(g_ecu.platoon.n_vehicles, PFE_MAX_VEHICLES);
+    /* One more tick of the old platoon: a tick's fuel at most (7.82 mL/s * 10 ms). */
+    const uint64_t own_before = pfe_ecu_own_fuel_ul(&g_ecu);
+    const uint64_t platoon_before = pfe_ecu_platoon_fuel_ul(&g_ecu);
+    assert_in_range(own_before - own, 0U, 100U);
     g_ntx = pfe_ecu_tick(&g_ecu, g_now, g_tx, PFE_ECU_TX_MAX);
     assert_int_equal(g_ecu.platoon.n_vehicles, 1U);
     assert_int_equal(g_ecu.own_position, 0U);
-    assert_true(pfe_ecu_own_fuel_ul(&g_ecu) == own);
-    assert_true(pfe_ecu_platoon_fuel_ul(&g_ecu) == platoon);
+    assert_true(pfe_ecu_own_fuel_ul(&g_ecu) == own_before);
+    assert_true(pfe_ecu_platoon_fuel_ul(&g_ecu) == platoon_before);
+    assert_in_range(platoon_before - platoon, 0U, 3000U);
 }
 
 /* ------------------------------------------------------------ simulation */

@@ -191,6 +191,49 @@ static void test_platoon_rejects_bad_configuration(void **state)
     assert_int_equal(pl.mass_kg, 40000U * PFE_MAX_VEHICLES);
 }
 
+/* pfe_platoon_init() in pieces, positions in any order, is the same model;
+ * each piece refuses what pfe_platoon_init() refuses. */
+static void test_platoon_init_in_pieces(void **state)
+{
+    (void)state;
+    static const uint32_t sizes[3] = {1U, 20U, PFE_MAX_VEHICLES};
+    for (uint32_t k = 0U; k < 3U; k++) {
+        pfe_platoon_config_t cfg;
+        pfe_platoon_config_uniform(&cfg, sizes[k], 8000U, &pfe_default_vehicle, &pfe_default_env,
+                                   &pfe_default_drag);
+        static pfe_platoon_t once;
+        static pfe_platoon_t pieces;
+        memset(&once, 0, sizeof once);
+        memset(&pieces, 0, sizeof pieces);
+        assert_int_equal(pfe_platoon_init(&once, &cfg), PFE_OK);
+        assert_int_equal(pfe_platoon_init_begin(&cfg), PFE_OK);
+        /* the last positions first, 8 at a time, then the first 8; past the end is a no-op */
+        assert_int_equal(pfe_platoon_init_positions(&pieces, &cfg, 8U, 8U), PFE_OK);
+        assert_int_equal(pfe_platoon_init_positions(&pieces, &cfg, 16U, 8U), PFE_OK);
+        assert_int_equal(pfe_platoon_init_positions(&pieces, &cfg, 24U, 100U), PFE_OK);
+        assert_int_equal(pfe_platoon_init_positions(&pieces, &cfg, 0U, 8U), PFE_OK);
+        assert_int_equal(pfe_platoon_init_positions(&pieces, &cfg, 40U, 8U), PFE_OK);
+        assert_int_equal(pfe_platoon_init_finish(&pieces, &cfg), PFE_OK);
+        assert_memory_equal(&once, &pieces, sizeof once);
+    }
+    pfe_platoon_config_t cfg;
+    pfe_platoon_t pl;
+    pfe_platoon_config_uniform(&cfg, 5U, 10000U, &pfe_default_vehicle, &pfe_default_env, &pfe_default_drag);
+    assert_int_equal(pfe_platoon_init_begin(NULL), PFE_EINVAL);
+    assert_int_equal(pfe_platoon_init_positions(NULL, &cfg, 0U, 5U), PFE_EINVAL);
+    assert_int_equal(pfe_platoon_init_finish(NULL, &cfg), PFE_EINVAL);
+    assert_int_equal(pfe_platoon_init_finish(&pl, NULL), PFE_EINVAL);
+    cfg.vehicle[3] = NULL;
+    assert_int_equal(pfe_platoon_init_begin(&cfg), PFE_OK); /* begin checks the platoon, not each truck */
+    assert_int_equal(pfe_platoon_init_positions(&pl, &cfg, 0U, 5U), PFE_EINVAL);
+    assert_int_equal(pfe_platoon_init_finish(&pl, &cfg), PFE_EINVAL);
+    cfg.vehicle[3] = &pfe_default_vehicle;
+    cfg.n_vehicles = PFE_MAX_VEHICLES + 1U;
+    assert_int_equal(pfe_platoon_init_begin(&cfg), PFE_EINVAL);
+    assert_int_equal(pfe_platoon_init_positions(&pl, &cfg, 0U, 5U), PFE_EINVAL);
+    assert_int_equal(pfe_platoon_init_finish(&pl, &cfg), PFE_EINVAL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -202,6 +245,7 @@ int main(void)
         cmocka_unit_test(test_platoon_aggregates),
         cmocka_unit_test(test_platoon_takes_weakest_power_to_mass),
         cmocka_unit_test(test_platoon_rejects_bad_configuration),
+        cmocka_unit_test(test_platoon_init_in_pieces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
