@@ -299,6 +299,11 @@ int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_stat
         (void)pfe_estimator_set_fuel_used_ul(&ecu->est, 0, restored->own_fuel_ul);
         (void)pfe_estimator_set_fuel_used_ul(&ecu->est, PFE_EST_PLATOON, restored->platoon_fuel_ul);
         ecu->nvm_sequence = restored->sequence;
+        if (((restored->id_flags & PFE_NVM_ID_VALID) != 0U) && !cfg->identification_off) {
+            /* a record out of range restores nothing (pfe_identify_restore()) */
+            (void)pfe_identify_restore(&ecu->identify, restored->id_mass_kg, restored->id_aux_w,
+                                       (restored->id_flags & PFE_NVM_ID_CONVERGED) != 0U);
+        }
     }
     if (configure(ecu, cfg->default_vehicles, cfg->default_position, cfg->default_gap_mm) != PFE_OK) {
         return PFE_EINVAL;
@@ -316,6 +321,7 @@ int pfe_ecu_init(pfe_ecu_t *ecu, const pfe_ecu_config_t *cfg, const pfe_nvm_stat
     ecu->preview.state = PFE_SIG_NOT_AVAILABLE;
     pfe_preview_init(&ecu->preview_buf);
     ecu->out = NULL;
+    use_identified(ecu); /* a converged identification restored from NVM */
     return PFE_OK;
 }
 
@@ -1073,6 +1079,18 @@ void pfe_ecu_nvm_take(const pfe_ecu_t *ecu, pfe_nvm_state_t *out)
     out->sequence = ecu->nvm_sequence + 1U;
     out->own_fuel_ul = pfe_ecu_own_fuel_ul(ecu);
     out->platoon_fuel_ul = pfe_ecu_platoon_fuel_ul(ecu);
+    /* identification once it has learnt something: kept across a reset */
+    const bool learnt = pfe_identify_counters(&ecu->identify)->mass_updates > 0U;
+    const bool converged = pfe_identify_converged(&ecu->identify);
+    out->id_mass_kg = learnt ? pfe_identify_mass_kg(&ecu->identify) : 0U;
+    out->id_aux_w = learnt ? pfe_identify_aux_power_w(&ecu->identify) : 0U;
+    out->id_flags = 0U;
+    if (learnt) {
+        out->id_flags |= PFE_NVM_ID_VALID;
+    }
+    if (converged) {
+        out->id_flags |= PFE_NVM_ID_CONVERGED;
+    }
 }
 
 void pfe_ecu_nvm_written(pfe_ecu_t *ecu, int result)

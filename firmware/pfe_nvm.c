@@ -6,7 +6,7 @@
 
 #include "pfe_fixed.h"
 
-static const uint8_t k_magic[4] = {(uint8_t)'P', (uint8_t)'F', (uint8_t)'N', (uint8_t)'1'};
+static const uint8_t k_magic[4] = {(uint8_t)'P', (uint8_t)'F', (uint8_t)'N', (uint8_t)'2'};
 
 uint32_t pfe_crc32(const uint8_t *data, uint32_t len)
 {
@@ -51,22 +51,39 @@ void pfe_nvm_encode(const pfe_nvm_state_t *state, uint8_t out[PFE_NVM_RECORD_SIZ
     put_le(&out[4], state->sequence, 4U);
     put_le(&out[8], state->own_fuel_ul, 8U);
     put_le(&out[16], state->platoon_fuel_ul, 8U);
-    put_le(&out[24], pfe_crc32(out, 24U), 4U);
+    put_le(&out[24], state->id_mass_kg, 4U);
+    put_le(&out[28], state->id_aux_w, 4U);
+    put_le(&out[32], state->id_flags, 4U);
+    put_le(&out[36], pfe_crc32(out, 36U), 4U);
+}
+
+static bool magic_is(const uint8_t in[PFE_NVM_RECORD_SIZE], const uint8_t magic[4])
+{
+    bool same = true;
+    for (uint32_t k = 0U; k < 4U; k++) {
+        same = same && (in[k] == magic[k]);
+    }
+    return same;
 }
 
 int pfe_nvm_decode(const uint8_t in[PFE_NVM_RECORD_SIZE], pfe_nvm_state_t *state)
 {
-    for (uint32_t k = 0U; k < 4U; k++) {
-        if (in[k] != k_magic[k]) {
-            return PFE_EINVAL;
-        }
+    static const uint8_t k_magic_v1[4] = {(uint8_t)'P', (uint8_t)'F', (uint8_t)'N', (uint8_t)'1'};
+    const bool v2 = magic_is(in, k_magic);
+    const bool v1 = magic_is(in, k_magic_v1);
+    uint32_t body = 24U; /* the first layout's CRC offset */
+    if (v2) {
+        body = 36U;
     }
-    if ((uint32_t)get_le(&in[24], 4U) != pfe_crc32(in, 24U)) {
+    if ((!v1 && !v2) || ((uint32_t)get_le(&in[body], 4U) != pfe_crc32(in, body))) {
         return PFE_EINVAL;
     }
     state->sequence = (uint32_t)get_le(&in[4], 4U);
     state->own_fuel_ul = get_le(&in[8], 8U);
     state->platoon_fuel_ul = get_le(&in[16], 8U);
+    state->id_mass_kg = v2 ? (uint32_t)get_le(&in[24], 4U) : 0U;
+    state->id_aux_w = v2 ? (uint32_t)get_le(&in[28], 4U) : 0U;
+    state->id_flags = v2 ? (uint32_t)get_le(&in[32], 4U) : 0U;
     return PFE_OK;
 }
 
@@ -93,6 +110,9 @@ int pfe_nvm_pick(const uint8_t *slot0, const uint8_t *slot1, pfe_nvm_state_t *st
         state->sequence = 0U;
         state->own_fuel_ul = 0U;
         state->platoon_fuel_ul = 0U;
+        state->id_mass_kg = 0U;
+        state->id_aux_w = 0U;
+        state->id_flags = 0U;
         return -1;
     }
     *state = s[pick];

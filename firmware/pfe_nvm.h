@@ -11,23 +11,32 @@
  * This file only builds and checks the bytes; a HAL backend stores them.
  *
  * Record layout (PFE_NVM_RECORD_SIZE bytes, little endian):
- *   0  magic "PFN1"      4  sequence (uint32, wraps; compared by serial
+ *   0  magic "PFN2"      4  sequence (uint32, wraps; compared by serial
  *   8  own fuel used, uL (uint64)          number arithmetic, RFC 1982)
  *   16 platoon fuel used, uL (uint64)
- *   24 CRC-32 (IEEE 802.3, reflected, init and final xor 0xFFFFFFFF) of bytes 0..23
+ *   24 identified mass, kg (uint32)   28 identified aux power, W (uint32)
+ *   32 identification flags (uint32): PFE_NVM_ID_* (0: nothing identified)
+ *   36 CRC-32 (IEEE 802.3, reflected, init and final xor 0xFFFFFFFF) of bytes 0..35
+ * A record of the first layout ("PFN1": totals, CRC-32 of bytes 0..23 at
+ * 24) is still read: its totals restore, with nothing identified.
  */
 #ifndef PFE_NVM_H
 #define PFE_NVM_H
 
 #include <stdint.h>
 
-#define PFE_NVM_RECORD_SIZE 28U
+#define PFE_NVM_RECORD_SIZE 40U
+#define PFE_NVM_ID_VALID 1U       /* mass and aux power hold an identification */
+#define PFE_NVM_ID_CONVERGED 2U   /* it had converged (pfe_identify.h) */
 #define PFE_NVM_SLOTS 2U
 
 typedef struct {
     uint32_t sequence;
     uint64_t own_fuel_ul;
     uint64_t platoon_fuel_ul;
+    uint32_t id_mass_kg;        /* identified mass, when id_flags has PFE_NVM_ID_VALID */
+    uint32_t id_aux_w;          /* identified auxiliary power */
+    uint32_t id_flags;          /* PFE_NVM_ID_* */
 } pfe_nvm_state_t;
 
 /* CRC-32 (IEEE) of len bytes; nibble table, no large tables. */

@@ -9,7 +9,7 @@
 #include "hal/stm32f4/hal_stm32_time.h"
 
 #define ERASED 0xFFFFFFFFU
-#define DATA_WORDS 7U
+#define DATA_WORDS 10U
 
 static bool blank(const uint32_t *w, uint32_t n)
 {
@@ -93,7 +93,7 @@ static const uint32_t *find_any(const hal_nvm_t *nvm, uint32_t slot)
     return r;
 }
 
-/* A record's 28 bytes as 7 little-endian words, and back. */
+/* A record's 40 bytes as 10 little-endian words, and back. */
 static void to_words(const uint8_t *b, uint32_t w[DATA_WORDS])
 {
     for (uint32_t k = 0U; k < DATA_WORDS; k++) {

@@ -7,8 +7,8 @@
  *
  *   sector: word 0 magic HAL_STM32_NVM_SECTOR_MAGIC, word 1 generation
  *           (the sector written last has the higher one), then records;
- *   record: 9 words: slot tag (HAL_STM32_NVM_RECORD_TAG | slot), the
- *           28 bytes of the slot (firmware/pfe_nvm.h's record, with its own
+ *   record: 12 words: slot tag (HAL_STM32_NVM_RECORD_TAG | slot), the
+ *           40 bytes of the slot (firmware/pfe_nvm.h's record, with its own
  *           CRC-32), commit word HAL_STM32_NVM_COMMIT, programmed last.
  *
  * A record counts only once its commit word reads back exactly; a slot
@@ -23,17 +23,17 @@
  * interval of fuel. tests/stm32/test_stm32_nvm.c cuts the power after
  * every single flash operation of a save sequence, sector switch included.
  *
- * Wear: a 16 KiB sector holds (4096 - 2) / 9 = 454 records; the two
- * sectors take turns, so each is erased once every 908 saves. At the
- * STM32 image's 60 s save interval, driving 24 h a day: 1440 saves, 1.6
- * erases per sector a day; the datasheet's 10 000 cycles last 17 years.
- * (At 10 s, the host tool's default: 9.5 erases a day, 2.9 years.)
+ * Wear: a 16 KiB sector holds (4096 - 2) / 12 = 341 records; the two
+ * sectors take turns, so each is erased about once every 682 saves. At the
+ * STM32 image's 60 s save interval, driving 24 h a day: 1440 saves, 2.1
+ * erases per sector a day; the datasheet's 10 000 cycles last 13 years.
+ * (At 10 s, the host tool's default: 12.7 erases a day, 2.2 years.)
  *
  * The core stalls while flash is busy (one bank): a word takes ~16 us, a
  * 16 KiB sector erase 250 ms typical and 500 ms at most (datasheet,
  * x32); interrupts and the CAN FIFO wait meanwhile, so a sector switch
  * costs up to 50 ticks and some frames (counted as late ticks and FIFO
- * overruns), once every 454 saves. HAL_STM32_NVM_ERASE_TIMEOUT_US bounds
+ * overruns), once every 341 saves. HAL_STM32_NVM_ERASE_TIMEOUT_US bounds
  * the wait; the watchdog (hal_stm32_board.h) is longer.
  */
 #ifndef HAL_STM32_NVM_H
@@ -45,7 +45,7 @@
 #include "hal/stm32f4/stm32f4_regs.h"
 
 #define HAL_STM32_NVM_SECTOR_WORDS 4096U            /* 16 KiB */
-#define HAL_STM32_NVM_RECORD_WORDS 9U
+#define HAL_STM32_NVM_RECORD_WORDS 12U
 #define HAL_STM32_NVM_FIRST_RECORD 2U               /* after magic, generation */
 #define HAL_STM32_NVM_RECORDS \
     ((HAL_STM32_NVM_SECTOR_WORDS - HAL_STM32_NVM_FIRST_RECORD) / HAL_STM32_NVM_RECORD_WORDS)
@@ -55,7 +55,7 @@
 #define HAL_STM32_NVM_PROGRAM_TIMEOUT_US 1000U
 #define HAL_STM32_NVM_ERASE_TIMEOUT_US 1000000U
 
-_Static_assert(PFE_NVM_RECORD_SIZE == 28U, "a record is 7 words of data");
+_Static_assert(PFE_NVM_RECORD_SIZE == 40U, "a record is 10 words of data");
 
 struct hal_nvm {
     stm32_flash_t *regs;

@@ -4,12 +4,15 @@
  *
  * Input: byte 0: bits 0, 1 give slot 0, 1 a correct CRC (computed over the
  * bytes given, so that records with any content are read, not only the
- * rare ones whose random CRC matches); bits 2, 3 give the slot magic
- * "PFN1"; bits 4, 5 make slot 0, 1 unreadable (NULL); then 28 bytes of
- * slot 0 and 28 of slot 1 (missing bytes are 0xFF, erased flash).
+ * rare ones whose random CRC matches); bits 2, 3 give the slot magic;
+ * bits 4, 5 make slot 0, 1 unreadable (NULL); bit 6: the first layout
+ * ("PFN1", CRC of 24 bytes) instead of the current one ("PFN2", CRC of 36
+ * bytes); then PFE_NVM_RECORD_SIZE bytes of slot 0 and as many of slot 1
+ * (missing bytes are 0xFF, erased flash).
  *
  * Invariants (abort on failure): decode accepts exactly the records with
- * the magic and their CRC, and then re-encodes them byte for byte; pick
+ * the magic and their CRC, and then re-encodes them byte for byte (a
+ * record of the first layout: its totals, nothing identified); pick
  * returns -1 (and zeros) when neither slot decodes, else the slot that
  * decodes, or of two the newer by serial number arithmetic (ties: slot
  * 0), with that slot's values; the next slot is the other one; the ECU
@@ -48,7 +51,9 @@ static bool check_slot(const uint8_t rec[PFE_NVM_RECORD_SIZE], pfe_nvm_state_t *
     pfe_nvm_state_t s;
     memset(&s, 0xA5, sizeof s);
     const int rc = pfe_nvm_decode(rec, &s);
-    const bool valid = (memcmp(rec, "PFN1", 4U) == 0) && (le32(&rec[24]) == pfe_crc32(rec, 24U));
+    const bool v2 = (memcmp(rec, "PFN2", 4U) == 0) && (le32(&rec[36]) == pfe_crc32(rec, 36U));
+    const bool v1 = (memcmp(rec, "PFN1", 4U) == 0) && (le32(&rec[24]) == pfe_crc32(rec, 24U));
+    const bool valid = v1 || v2;
     FUZZ_CHECK((rc == PFE_OK) == valid);
     FUZZ_CHECK((rc == PFE_OK) || (rc == PFE_EINVAL));
     if (!valid) {
@@ -57,9 +62,16 @@ static bool check_slot(const uint8_t rec[PFE_NVM_RECORD_SIZE], pfe_nvm_state_t *
     FUZZ_CHECK(s.sequence == le32(&rec[4]));
     FUZZ_CHECK(s.own_fuel_ul == le64(&rec[8]));
     FUZZ_CHECK(s.platoon_fuel_ul == le64(&rec[16]));
-    uint8_t again[PFE_NVM_RECORD_SIZE];
-    pfe_nvm_encode(&s, again);
-    FUZZ_CHECK(memcmp(again, rec, sizeof again) == 0);
+    if (v2) {
+        FUZZ_CHECK(s.id_mass_kg == le32(&rec[24]));
+        FUZZ_CHECK(s.id_aux_w == le32(&rec[28]));
+        FUZZ_CHECK(s.id_flags == le32(&rec[32]));
+        uint8_t again[PFE_NVM_RECORD_SIZE];
+        pfe_nvm_encode(&s, again);
+        FUZZ_CHECK(memcmp(again, rec, sizeof again) == 0);
+    } else {
+        FUZZ_CHECK((s.id_flags == 0U) && (s.id_mass_kg == 0U) && (s.id_aux_w == 0U));
+    }
     *out = s;
     return true;
 }
@@ -81,13 +93,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         memcpy(slot, data + 1, n);
     }
     for (uint32_t k = 0U; k < PFE_NVM_SLOTS; k++) {
+        const bool first_layout = (flags & 64U) != 0U;
+        const uint32_t body = first_layout ? 24U : 36U;
         if ((flags & (4U << k)) != 0U) {
-            memcpy(slot[k], "PFN1", 4U);
+            memcpy(slot[k], first_layout ? "PFN1" : "PFN2", 4U);
         }
         if ((flags & (1U << k)) != 0U) {
-            const uint32_t crc = pfe_crc32(slot[k], 24U);
+            const uint32_t crc = pfe_crc32(slot[k], body);
             for (uint32_t b = 0U; b < 4U; b++) {
-                slot[k][24U + b] = (uint8_t)(crc >> (8U * b));
+                slot[k][body + b] = (uint8_t)(crc >> (8U * b));
             }
         }
     }

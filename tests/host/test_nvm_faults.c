@@ -140,7 +140,7 @@ static void run_sequence(run_t *r, uint32_t seq)
 
     /* What the flash holds, as this test sees it. */
     bool have_completed = false;
-    pfe_nvm_state_t completed = {0U, 0U, 0U};
+    pfe_nvm_state_t completed = {0U, 0U, 0U, 0U, 0U, 0U};
     /* The life before the boot. */
     bool reset_seen = false;
     uint64_t total_at_reset_ul = 0U;

@@ -107,7 +107,8 @@ static void test_device_status_reports_the_controller_and_the_flash(void **state
     assert_int_equal(st.error_passive.value, 1U);         /* REC > 127 */
     assert_int_equal(st.error_warning.value, 1U);
     assert_int_equal(st.nvm_write_failing.value, 1U);
-    assert_in_range(st.nvm_write_failures.value, 1U, 2U);
+    /* retried each tick (pfe_ecu_nvm_written()): at least the failures that set the bit */
+    assert_in_range(st.nvm_write_failures.value, PFE_ECU_NVM_FAILING_AFTER, 150U);
     assert_int_equal(st.reset_cause.value, 1U);
     assert_int_equal(g_nm->misuse, 0U);
     assert_int_equal(nt->misuse, 0U);

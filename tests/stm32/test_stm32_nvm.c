@@ -29,7 +29,7 @@ static void mount(void)
 
 static void record(uint32_t seq, uint8_t out[PFE_NVM_RECORD_SIZE])
 {
-    const pfe_nvm_state_t s = {seq, (uint64_t)seq * 1000U, (uint64_t)seq * 5000U};
+    const pfe_nvm_state_t s = {seq, (uint64_t)seq * 1000U, (uint64_t)seq * 5000U, 0U, 0U, 0U};
     pfe_nvm_encode(&s, out);
 }
 
@@ -83,13 +83,13 @@ static void test_records_in_flash(void **state)
     assert_int_equal(s[0], 0x5046454EU);   /* sector magic */
     assert_int_equal(s[1], 1U);            /* generation */
     assert_int_equal(s[2], 0xA55A0000U);   /* slot 0's tag */
-    assert_int_equal(s[3], 0x314E4650U);   /* "PFN1", the record's first word */
-    assert_int_equal(s[10], 0x5AA5C33CU);  /* commit */
-    assert_int_equal(s[11], 0xA55A0001U);  /* slot 1's tag */
-    assert_int_equal(s[20], 0xFFFFFFFFU);  /* free */
-    /* One erase, 2 sector words, 2 x 9 record words. */
+    assert_int_equal(s[3], 0x324E4650U);   /* "PFN2", the record's first word */
+    assert_int_equal(s[13], 0x5AA5C33CU);  /* commit */
+    assert_int_equal(s[14], 0xA55A0001U);  /* slot 1's tag */
+    assert_int_equal(s[26], 0xFFFFFFFFU);  /* free */
+    /* One erase, 2 sector words, 2 x 12 record words. */
     assert_int_equal(flash_model.erases, 1U);
-    assert_int_equal(flash_model.ops, 1U + 2U + 18U);
+    assert_int_equal(flash_model.ops, 1U + 2U + 24U);
     assert_int_equal(flash_model.misuse, 0U);
     assert_int_equal(flash_model.regs.cr, FLASH_CR_LOCK); /* locked again */
     pfe_nvm_state_t st;
@@ -103,33 +103,34 @@ static void test_records_in_flash(void **state)
     assert_int_equal(st.platoon_fuel_ul, 5000U);
 }
 
-/* 454 records a sector: the 455th save formats sector 2, carries slot 1's
- * latest over and appends; the 909th goes back to sector 1. */
+/* (4096 - 2) / 12 = 341 records a sector: the 342nd save (to slot 1)
+ * formats sector 2, carries slot 0's latest over and appends; each later sector takes 340
+ * new records after the one carried over. */
 static void test_sector_switch(void **state)
 {
     (void)state;
-    assert_int_equal(HAL_STM32_NVM_RECORDS, 454U);
-    for (uint32_t k = 0U; k < 454U; k++) {
+    assert_int_equal(HAL_STM32_NVM_RECORDS, 341U);
+    for (uint32_t k = 0U; k < 341U; k++) {
         assert_int_equal(save(k), 0);
     }
     assert_int_equal(flash_model.erases, 1U);
-    assert_int_equal(save(454U), 0);
+    assert_int_equal(save(341U), 0);
     assert_int_equal(flash_model.erases, 2U);
     assert_int_equal(flash_model.mem[1][0], 0x5046454EU);
     assert_int_equal(flash_model.mem[1][1], 2U);
-    assert_int_equal(flash_model.mem[1][2], 0xA55A0001U); /* slot 1 carried over */
-    assert_int_equal(flash_model.mem[1][11], 0xA55A0000U); /* then slot 0's new record */
+    assert_int_equal(flash_model.mem[1][2], 0xA55A0000U); /* slot 0 carried over */
+    assert_int_equal(flash_model.mem[1][14], 0xA55A0001U); /* then slot 1's new record */
     pfe_nvm_state_t st;
-    assert_int_equal(restored(&st), 0);
-    assert_int_equal(st.sequence, 454U);
-    for (uint32_t k = 455U; k < 2000U; k++) {
+    assert_int_equal(restored(&st), 1);
+    assert_int_equal(st.sequence, 341U);
+    for (uint32_t k = 342U; k < 2000U; k++) {
         assert_int_equal(save(k), 0);
     }
-    /* Sector 2 took 453 more, sector 1 (generation 3) 454, sector 2 again. */
-    assert_int_equal(flash_model.erases, 5U);
+    /* Switches at saves 341, 681, 1021, 1361 and 1701: six erases in all. */
+    assert_int_equal(flash_model.erases, 6U);
     flash_model_power_on();
     mount();
-    assert_int_equal(g_nvm.generation, 5U);
+    assert_int_equal(g_nvm.generation, 6U);
     assert_int_equal(restored(&st), 1);
     assert_int_equal(st.sequence, 1999U);
     assert_int_equal(flash_model.misuse, 0U);
@@ -148,9 +149,10 @@ static void test_erase_that_does_not_verify_is_reported(void **state)
 }
 
 /* Saves PREFILL .. PREFILL + SAVES - 1 after PREFILL saves: sector 1 full,
- * sector 2 holding 451 records, so that the run crosses a switch back to
- * sector 1, retiring it first. */
-#define PREFILL 904U
+ * sector 2 holding 338 of its 341 records (the one carried over and saves
+ * 341 .. 677), so that the run crosses a switch back to sector 1 (at save
+ * 681), retiring it first. */
+#define PREFILL 678U
 #define SAVES 10U
 
 static uint32_t run_saves(uint32_t *completed)
@@ -180,9 +182,9 @@ static void test_power_cut_after_every_flash_operation(void **state)
     uint32_t completed = 0U;
     const uint32_t total = run_saves(&completed) - ops0;
     assert_int_equal(completed, SAVES);
-    /* 10 saves of 9 words, one switch: retire, erase, 2 sector words, 9 carried. */
+    /* 10 saves of 12 words, one switch: retire, erase, 2 sector words, 12 carried. */
     assert_int_equal(flash_model.erases, 3U);
-    assert_int_equal(total, (SAVES * 9U) + 1U + 1U + 2U + 9U);
+    assert_int_equal(total, (SAVES * 12U) + 1U + 1U + 2U + 12U);
     for (uint32_t cut = 1U; cut <= total; cut++) {
         for (uint32_t seed = 1U; seed <= 3U; seed++) {
             flash_model_reset(seed * 7919U + cut);

@@ -661,7 +661,7 @@ static void test_nvm_write_failure_is_retried(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config(); /* saves every 1 s */
-    const pfe_nvm_state_t restored = {7U, 5000U, 6000U};
+    const pfe_nvm_state_t restored = {7U, 5000U, 6000U, 0U, 0U, 0U};
     start(&c, &restored, 1);
     for (uint32_t k = 0U; (k < 200U) && !pfe_ecu_nvm_due(&g_ecu); k++) {
         tick(true, true);

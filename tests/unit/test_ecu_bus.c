@@ -512,6 +512,23 @@ static void test_identifies_the_truck_from_the_engine(void **state)
     assert_int_equal(is.mass_source.value, PFE_MASS_SOURCE_IDENTIFIED);
     assert_int_equal(is.identification.value, 1);
     assert_int_equal(is.vehicle_mass_kg.value, (g_ecu.own_calib.mass_kg + 5U) / 10U * 10U);
+    /* NVM keeps the identification across a reset: the module starts with it */
+    pfe_nvm_state_t rec;
+    pfe_ecu_nvm_take(&g_ecu, &rec);
+    assert_int_equal(rec.id_flags, PFE_NVM_ID_VALID | PFE_NVM_ID_CONVERGED);
+    assert_int_equal(rec.id_mass_kg, pfe_identify_mass_kg(&g_ecu.identify));
+    uint8_t bytes[PFE_NVM_RECORD_SIZE];
+    pfe_nvm_encode(&rec, bytes);
+    pfe_nvm_state_t back;
+    assert_int_equal(pfe_nvm_pick(bytes, NULL, &back), 0);
+    const uint32_t mass_before = g_ecu.own_calib.mass_kg;
+    const uint64_t now_before = g_now;
+    memset(&g_ecu, 0xA5, sizeof g_ecu);
+    assert_int_equal(pfe_ecu_init(&g_ecu, &c, &back, 0, g_now), PFE_OK);
+    assert_int_equal(g_ecu.mass_source, PFE_MASS_SOURCE_IDENTIFIED);
+    assert_int_equal(g_ecu.own_calib.mass_kg, mass_before);
+    assert_true(pfe_identify_converged(&g_ecu.identify));
+    g_now = now_before;
     /* CVW's mass comes first; the identified aux power stays */
     pfe_can_frame_t cf;
     const pfe_msg_cvw_t w = {{8000U, PFE_SIG_VALID}, {15000U, PFE_SIG_VALID}};

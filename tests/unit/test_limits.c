@@ -507,7 +507,7 @@ static void test_ecu_status_says_output_clamped(void **state)
     (void)state;
     /* A restored total of 4211081215499 uL still fits HRLFC (4211081.215 L)
      * and PlatoonFuel; without speed the estimate stands still. */
-    pfe_nvm_state_t r = {1U, TOTAL_MAX_UL + 499U, TOTAL_MAX_UL + 499U};
+    pfe_nvm_state_t r = {1U, TOTAL_MAX_UL + 499U, TOTAL_MAX_UL + 499U, 0U, 0U, 0U};
     ecu_start(1U, 0U, &pfe_default_vehicle, &r);
     pfe_msg_status_t m = next_status(0U, 0U);
     m = next_status(0U, 0U);
