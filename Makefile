@@ -169,7 +169,7 @@ include mk/nvm.mk
 include mk/san.mk
 include mk/load.mk
 include mk/truck.mk
-M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware
+M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware -DPFE_CODEC_NO_NAMES
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
 include mk/stm32.mk

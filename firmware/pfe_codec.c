@@ -61,8 +61,16 @@ const pfe_codec_message_t pfe_codec_messages[PFE_MSG_COUNT] = {
 #define PLAIN PFE_CODEC_RANGES_NONE
 /* message, PGN, signal, SPN, start, length, mux, ranges, scale, offset, raw min, raw max */
 #define SIG(...) SIG_(__VA_ARGS__) /* expands C_<message> into its name and PGN first */
+/* An image built with PFE_CODEC_NO_NAMES (the Cortex-M4 replay image,
+ * whose flash budget is tight) keeps the table without the signals' names,
+ * which only host tools and tests read. */
+#ifdef PFE_CODEC_NO_NAMES
+#define SIG_NAME(name) ""
+#else
+#define SIG_NAME(name) (name)
+#endif
 #define SIG_(msg, pgn, name, spn, start, len, mux, ranges, snum, sden, onum, oden, rmin, rmax) \
-    {msg, pgn, name, spn, start, len, PFE_CODEC_LITTLE_ENDIAN, false, mux, ranges, snum, sden, \
+    {msg, pgn, SIG_NAME(name), spn, start, len, PFE_CODEC_LITTLE_ENDIAN, false, mux, ranges, snum, sden, \
      onum, oden, rmin, rmax}
 
 #define RAW16_MAX 0xFAFFU          /* J1939 2-byte valid area */
