@@ -171,6 +171,14 @@ pfe_input_verdict_t pfe_input_take(pfe_input_t *in, uint8_t source, pfe_sig_stat
 {
     note_sender(in, source);
     if (!arbitrate(in, source, state, value, rx_us)) {
+        if ((in->locked == PFE_INPUT_NO_SOURCE) && (state == PFE_SIG_ERROR)) {
+            /* no sender in use, and one says its sensor failed: the input is
+             * an error (not absent) until a valid sender comes */
+            in->state = PFE_SIG_ERROR;
+            in->value = 0;
+            in->rx_us = rx_us;
+            return PFE_INPUT_ACCEPTED;
+        }
         return PFE_INPUT_IGNORED;
     }
     if (state == PFE_SIG_VALID) {

@@ -15,7 +15,9 @@
  *    another sender only when the locked one has sent no valid value for
  *    PFE_INPUT_STALE_PERIODS periods or has just sent "error". A value that
  *    is not available or error from any sender but the locked one never
- *    replaces a valid value. Frames carrying the module's own source address
+ *    replaces a valid value; while no sender is in use, "error" makes the
+ *    input ERROR (a sensor that is there and failed is not an absent one)
+ *    until a valid sender comes. Frames carrying the module's own source address
  *    never reach this point (the ECU treats them as an address conflict).
  *
  * 2. Plausibility, in the spirit of opendbc's RxCheck: one table

@@ -62,27 +62,9 @@ int bus_ref_init_vehicles(bus_ref_t *r, unsigned n_vehicles, unsigned position, 
     }
     r->degraded = true;
     r->grade_state = (int)PFE_SIG_NOT_AVAILABLE;
+    pfe_input_init(&r->speed_in, PFE_IN_SPEED, PFE_INPUT_NO_SOURCE);
+    pfe_input_init(&r->grade_in, PFE_IN_GRADE, PFE_INPUT_NO_SOURCE);
     return 0;
-}
-
-/* Whether a frame from sa (valid value, or error) at t_us is the input's,
- * by the module's rule (firmware/pfe_input.h); stale_us: three periods. */
-static bool arb_take(bus_ref_arb_t *a, uint8_t sa, bool valid, bool error, uint64_t t_us,
-                     uint64_t stale_us)
-{
-    if (a->locked && (sa != a->sa)) {
-        if (!valid || (!a->error && ((t_us - a->valid_us) <= stale_us))) {
-            return false; /* another sender: only a valid value, once the locked one is gone */
-        }
-        a->locked = false;
-    }
-    if (valid) {
-        a->locked = true;
-        a->sa = sa;
-        a->valid_us = t_us;
-    }
-    a->error = a->locked && error;
-    return true;
 }
 
 static void tick(bus_ref_t *r, uint64_t now_us)
@@ -185,9 +167,15 @@ void bus_ref_input(bus_ref_t *r, const pfe_can_frame_t *f, uint64_t t_us)
     const uint32_t pgn = pfe_j1939_pgn(f->id);
     if (pgn == PFE_PGN_CCVS1) {
         pfe_msg_ccvs1_t m;
-        if ((pfe_codec_decode_ccvs1(f, &m) < 0) ||
-            !arb_take(&r->speed_arb, pfe_j1939_source(f->id), m.speed_mm_s.state == PFE_SIG_VALID,
-                      m.speed_mm_s.state == PFE_SIG_ERROR, t_us, SPEED_STALE_US)) {
+        if (pfe_codec_decode_ccvs1(f, &m) < 0) {
+            return;
+        }
+        const pfe_input_verdict_t v = pfe_input_take(&r->speed_in, pfe_j1939_source(f->id),
+                                                     m.speed_mm_s.state, m.speed_mm_s.value, t_us);
+        if (r->speed_in.error) {
+            r->speed_ok = false; /* rejected again and again: an error, as the module says */
+        }
+        if (v != PFE_INPUT_ACCEPTED) {
             return;
         }
         r->speed_ok = m.speed_mm_s.state == PFE_SIG_VALID;
@@ -197,9 +185,18 @@ void bus_ref_input(bus_ref_t *r, const pfe_can_frame_t *f, uint64_t t_us)
         r->speed_rx_us = t_us;
     } else if (pgn == PFE_PGN_SSI) {
         pfe_msg_ssi_t m;
-        if ((pfe_codec_decode_ssi(f, &m) < 0) ||
-            !arb_take(&r->grade_arb, pfe_j1939_source(f->id), m.pitch_udeg.state == PFE_SIG_VALID,
-                      m.pitch_udeg.state == PFE_SIG_ERROR, t_us, GRADE_STALE_US)) {
+        if (pfe_codec_decode_ssi(f, &m) < 0) {
+            return;
+        }
+        /* the gate judges the grade as the module computes it; the model uses tan() */
+        const int32_t grade_ppm = pfe_codec_grade_ppm_from_pitch(m.pitch_udeg.value, NULL);
+        const pfe_input_verdict_t v = pfe_input_take(&r->grade_in, pfe_j1939_source(f->id),
+                                                     m.pitch_udeg.state, grade_ppm, t_us);
+        if (r->grade_in.error) {
+            r->grade_state = (int)PFE_SIG_ERROR;
+            r->grade_ok = false;
+        }
+        if (v != PFE_INPUT_ACCEPTED) {
             return;
         }
         r->grade_state = (int)m.pitch_udeg.state;

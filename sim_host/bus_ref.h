@@ -44,18 +44,11 @@
 #include <stdint.h>
 
 #include "../firmware/pfe_can.h"
+#include "../firmware/pfe_input.h"
 #include "ref_model.h"
 
 #define BUS_REF_HISTORY 6U
 #define BUS_REF_TICK_US 10000U
-
-/* One input's sender arbitration. */
-typedef struct {
-    bool locked;
-    uint8_t sa;                     /* sender in use when locked */
-    bool error;                     /* it last sent error */
-    uint64_t valid_us;              /* its last valid value */
-} bus_ref_arb_t;
 
 typedef struct {
     /* the trucks' calibrations (bus_ref_init_vehicles(); NULL: default) */
@@ -69,7 +62,10 @@ typedef struct {
     ref_platoon_t pl;
     ref_estimator_t est;
     /* inputs */
-    bus_ref_arb_t speed_arb, grade_arb;
+    /* which frames are the inputs: the module's own gate, sender arbitration
+     * and plausibility (firmware/pfe_input.h, integer logic, not a model),
+     * so that the reference computes from exactly the values the module took */
+    pfe_input_t speed_in, grade_in;
     int grade_state;                /* pfe_sig_state_t of the grade in use */
     bool grade_flat;                /* the last tick assumed a flat road */
     double speed_m_s, grade;
