@@ -9,7 +9,7 @@
 /* Plausibility table (pfe_input.h gives the reasons for each figure). */
 const pfe_input_rule_t pfe_input_rules[PFE_IN_COUNT] = {
     /* CCVS1 speed, mm/s: 0 .. 150 km/h, 10 m/s^2 + 1 m/s a frame */
-    [PFE_IN_SPEED] = {PFE_PGN_CCVS1, 100000U, 0, 41667, 10000U, 1000U, 60000U},
+    [PFE_IN_SPEED] = {PFE_PGN_CCVS1, 100000U, 0, 41667, 10000U, 1000U, 0U},
     /* SSI pitch as grade, ppm: +-50 %, 20 %/s + 0.5 % a frame */
     [PFE_IN_GRADE] = {PFE_PGN_SSI, 10000U, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM, 200000U, 5000U, 0U},
     /* VDS altitude, mm: the signal's range, 15 m/s + 10 m a frame (J1939-71: every 1 s) */

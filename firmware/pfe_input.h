@@ -26,10 +26,11 @@
  *    for quantisation and sensor noise). A value outside the range, or that
  *    moved from the last accepted one by more than rate * dt + margin, or
  *    that came less than the rule's minimum interval after it (0.6 of the
- *    period of CCVS1 and LFE1: two nodes sending with one address, or a
- *    sender gone wild, garbage between the real frames; none for SSI, whose
- *    10 ms frames bunch on a loaded bus, and whose grade the estimator
- *    does not filter, so one wrong sample lasts one tick), is rejected and
+ *    period of another node's LFE1: two nodes sending with one address, or
+ *    a sender gone wild, garbage between the real frames; none for CCVS1
+ *    and SSI, whose frames the ECU stamps with its tick's time, so that a
+ *    late tick catching up brings real frames closer together than they
+ *    came), is rejected and
  *    counted; the input keeps its last accepted value, which ages as usual,
  *    so that a rejected frame changes nothing the estimator sees.
  *    PFE_INPUT_REJECTS_TO_ERROR rejections in a row make the input ERROR
