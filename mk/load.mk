@@ -5,4 +5,5 @@
 
 .PHONY: test-loaded
 test-loaded:
+	mkdir -p $(BUILD)
 	sh scripts/load_test.sh --log $(BUILD)/test-loaded.log -- $(MAKE) --no-print-directory test
