@@ -92,7 +92,7 @@ typedef enum {
 /* What the module is and how it starts. */
 typedef struct {
     uint8_t preferred_address;         /* source address claimed at start-up */
-    uint64_t name;                     /* J1939 NAME (pfe_codec_name_encode()); bit 63: arbitrary address capable */
+    uint64_t name;                     /* J1939 NAME (pfe_j1939_name_pack()); bit 63: arbitrary address capable */
     uint32_t save_interval_ms;         /* NVM save period, 1000 .. 3600000 */
     const pfe_vehicle_calib_t *vehicle;/* calibration of every truck */
     const pfe_env_calib_t *env;
@@ -108,7 +108,7 @@ typedef struct {
     int32_t default_set_speed_mm_s;
     /* The truck the module runs on (NULL: vehicle) and, by platoon position
      * (0 = lead), the others (NULL entries: vehicle). CVW's mass replaces
-     * the own truck's mass while it is valid (pfe_ecu_own_calib()). */
+     * the own truck's mass while it is valid (pfe_ecu_t.own_calib). */
     const pfe_vehicle_calib_t *own_vehicle;
     const pfe_vehicle_calib_t *vehicle_at[PFE_MAX_VEHICLES];
     /* A real bus (docs/j1939.md); zero is the default of each. */

@@ -25,7 +25,7 @@
  *   SJW 1 quantum. Oscillator tolerance this allows (ISO 11898-1):
  *   min(SJW / (20 x 14), min(BS1, BS2) / (2 x (13 x 14 - BS2))) =
  *   min(0.357 %, 0.556 %) = 0.357 %, far above the crystal's 50 ppm, and
- *   below the HSI's 1 % (hal_stm32_clock.c: the HSI fallback).
+ *   below the HSI's 1 % (hal_stm32_board.h: the HSI fallback).
  *
  *   BTR = (SJW - 1) << 24 | (BS2 - 1) << 20 | (BS1 - 1) << 16 | (BRP - 1)
  *   250 kbit/s: 0 << 24 | 1 << 20 | 10 << 16 | 11 = 0x001A000B

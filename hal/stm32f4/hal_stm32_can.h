@@ -23,7 +23,7 @@
  *
  * Errors: the status-change interrupt (hal_stm32_can_sce_isr()) counts
  * entries into bus-off; error-warning, error-passive, bus-off and the two
- * error counters are read from ESR by hal_stm32_can_bus_state(), which the
+ * error counters are read from ESR by hal_stm32_can_state(), which the
  * main loop hands to the ECU (pfe_ecu_note_bus_state(), PFE_DeviceStatus).
  * Bus-off recovery is the hardware's (MCR.ABOM: after 128 x 11 recessive
  * bits the controller rejoins the bus by itself); frames queued meanwhile

@@ -15,9 +15,8 @@
  * (hal_stm32_board.h: 1.6 to 4.5 s), and the next start reports it
  * (ResetCause 1).
  *
- * Built with HAL_STM32_QEMU (build/stm32/pfe_stm32_qemu.elf) for QEMU's
- * netduinoplus2, which models neither bxCAN nor the flash controller: see
- * main_qemu.c.
+ * QEMU's netduinoplus2 models neither bxCAN nor the flash controller: its
+ * image (build/stm32/pfe_stm32_qemu.elf) is built from main_qemu.c instead.
  */
 #include <stdbool.h>
 #include <stdint.h>

@@ -9,7 +9,7 @@
  * RCC's oscillators, bxCAN nor the flash controller. So this image is the
  * product's startup, vector table, clock set-up (whose ready flags never
  * come: it takes the timeouts and the HSI fallback), reset cause, time base
- * and console, without CAN and NVM (HAL_STM32_QEMU: this build only). Over
+ * and console, without CAN and NVM (this image only). Over
  * USART1 it prints
  *   "stm32: clock hse H pll P reset_cause C"   before the run,
  *   "stm32: ticks_10ms N ticks_us U"                then ten 10 ms waits,
