@@ -1,107 +1,8 @@
 /*
  * pfe_replay - replay a CAN log onto SocketCAN interfaces, paced by its
- * timestamps on CLOCK_MONOTONIC absolute deadlines.
- *
- *   pfe_replay [OPTION...] [TX=LOG...]
- *
- * The log: a candump log, candump's printed output or a Vector ASC file,
- * detected from its first lines (sim_host/canlog.h says exactly what each
- * format may hold).
- *
- * canplayer's options (same letters and meaning, -g as said below):
- *   -I FILE     the log; default, or "-": standard input
- *   -l N | -l i play the log N times, or endlessly; not with standard input
- *   -t          ignore timestamps: frames go one after another, -g apart
- *   -g MS       with -t, the gap between frames in milliseconds (decimals
- *               allowed; default 0: as fast as the kernel takes them).
- *               Without -t it is accepted and unused: frames are paced by
- *               deadlines, not by a polling period.
- *   -s S        skip gaps: a pause of more than S seconds between two frames
- *               of the log is cut out (the next frame goes at once)
- *   -n COUNT    stop after COUNT frames sent or written
- *   -x          disable local loopback of the frames sent (CAN_RAW_LOOPBACK
- *               off: other programs of this machine do not see them)
- *   -v          print each frame sent on standard output, as a candump log
- *               line with the interface it went to
- *   -h          this help
- * TX=LOG assignments: frames logged on interface LOG are sent on TX
- * (vcan0=can0: a log of can0 onto vcan0); TX "stdout" writes them to
- * standard output as candump log lines with LOG as interface (canplayer's
- * extra hook; in canonical form: upper-case hex, no '.' between bytes).
- * With assignments, frames of interfaces not assigned are skipped; without,
- * each frame goes to the interface it was logged on. An ASC file's channel N
- * is interface can<N-1>.
- *
- * Options of this tool:
- *   --speed F         F times as fast as logged (0.5: half speed); default 1
- *   --start S         only frames from S seconds after the log's first frame
- *   --end S           ... up to S seconds after it (reading stops there)
- *   --filter ID[:MASK]  only frames whose id matches: (id & MASK) == (ID &
- *                     MASK), hex; an ID of more than 3 digits or over 7FF is
- *                     29-bit and matches 29-bit frames only. Repeatable.
- *   --pgn PGN         only 29-bit frames of J1939 PGN (decimal, or hex with
- *                     0x), priority, source and PDU1 destination ignored.
- *                     Repeatable; a frame passes if it matches any --filter
- *                     or --pgn.
- *   --dry-run         send nothing: write each frame to standard output as
- *                     a candump log line, with the interface it would go to
- *                     (with -t, a converter: ASC or printed output to log)
- *   --format F        auto (default), log, printed, printed-delta, asc
- *   --skip-errors     skip bad lines and count them (default: stop at the
- *                     first, with its file, line and reason, exit 1; frames
- *                     before it have been sent)
- *   --skip-unknown    skip frames for interfaces that do not exist, instead
- *                     of stopping
- *   --tx-wait-ms MS   how long one frame may wait for room when the kernel's
- *                     transmit queue is full (ENOBUFS, EAGAIN) before it is
- *                     dropped and counted; default 100
- *   --spin-us US      sleep until US microseconds before each deadline, then
- *                     busy-wait for it: lateness of a few microseconds where
- *                     the kernel wakes sleepers late (virtual machines), for
- *                     a CPU kept busy up to US per frame; default 200 (a
- *                     hybrid: at 116 frames/s, 2 % of a CPU); 0 sleeps only
- *   --poll-us US      sleep in steps of at most US microseconds (each to an
- *                     absolute time) up to the spin; default 0 (one sleep)
- *   --allow-real-bus  allow sending on CAN interfaces that are not virtual
- *   --quiet           no progress line
- *
- * Real-bus guard: a frame goes only to a virtual CAN interface (vcan,
- * vxcan), as hal/socketcan's guard classifies it, unless --allow-real-bus.
- * Any other interface (a CAN adapter, slcan, or not CAN at all, e.g. lo) is
- * refused before a single frame goes to it, with exit status 2.
- *
- * Pacing: frame k is due at T0 + (t_k - t_first - start - cut gaps) / speed,
- * T0 the CLOCK_MONOTONIC time the pass began; the replayer sleeps until
- * --spin-us before then (clock_nanosleep, TIMER_ABSTIME), busy-waits the
- * rest and sends. The default, sleep then a 200 us spin, was chosen by
- * measurement (tests/e2e/replay_vcan.sh's pacing, QEMU without KVM on a
- * shared host, 3 rounds each): side by side with canplayer its p99 was
- * 0.68 to 0.99 of canplayer's (sleeping alone 0.62 to 0.92, a 1 ms spin
- * 0.82 to 0.97, 1 ms polling steps with it 1.01 to 1.20); one run after the other,
- * where the host's stalls differ from run to run, a 200 us spin was ahead
- * of canplayer in 1 round of 3 and sleeping alone in none. Lateness is the
- * CLOCK_MONOTONIC time after the send returned minus the deadline, kept in a
- * fixed histogram (sim_host/lateness.h); with -t and no -g there is no
- * deadline and no lateness. Each pass of -l starts afresh. A log without
- * timestamps (candump output without -t) is sent as with -t.
- *
- * At the end (also after Ctrl-C), a summary on standard error: frames sent,
- * written to standard output, skipped (filters, --start, unassigned or
- * unknown interfaces), dropped (transmit queue full, or the interface down),
- * parse errors by reason
- * with the first of each, and lateness p50 / p99 / max. While it runs, a
- * progress line on standard error when that is a terminal.
- *
- * Exit status:
- *   0  done: every frame sent or written (lines skipped by --skip-errors
- *      do not change it, unless no frame at all could be read: 1)
- *   1  input or system error: unreadable or empty log, a bad line (without
- *      --skip-errors), no such interface, a socket error
- *   2  refused: an interface that is not virtual CAN, without --allow-real-bus
- *   3  usage error
- *   4  done, but frames were dropped (transmit queue full beyond --tx-wait-ms,
- *      or the interface down: counted, the run goes on)
- *   130  stopped by SIGINT or SIGTERM (the summary is printed)
+ * timestamps on CLOCK_MONOTONIC absolute deadlines; canplayer's options and
+ * more. The manual (every option, the exit status, examples) is its --help,
+ * k_manual below; docs/harness.md says how its pacing was chosen and tested.
  */
 #define _GNU_SOURCE /* clock_nanosleep, sigaction */
 
@@ -217,16 +118,122 @@ static int64_t now_ns(void)
     return ((int64_t)ts.tv_sec * 1000000000LL) + ts.tv_nsec;
 }
 
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+        "usage: pfe_replay [-I FILE] [-l N|i] [-t] [-g MS] [-s S] [-n COUNT] [-x] [-v]\n"
+        "                  [--speed F] [--start S] [--end S] [--filter ID[:MASK]]...\n"
+        "                  [--pgn PGN]... [--dry-run] [--format auto|log|printed|printed-delta|asc]\n"
+        "                  [--skip-errors] [--skip-unknown] [--tx-wait-ms MS] [--spin-us US] [--poll-us US]\n"
+        "                  [--allow-real-bus] [--quiet] [TX=LOG | stdout=LOG]...\n"
+        "\n"
+        "Replays a CAN log onto SocketCAN interfaces, paced by its timestamps on\n"
+        "CLOCK_MONOTONIC absolute deadlines. The log: a candump log, candump's printed\n"
+        "output or a Vector ASC file, detected from its first lines.\n"
+        "\n"
+        "canplayer's options (same letters and meaning, -g as said below):\n"
+        "  -I FILE     the log; default, or \"-\": standard input\n"
+        "  -l N | -l i play the log N times, or endlessly; not with standard input\n"
+        "  -t          ignore timestamps: frames go one after another, -g apart\n"
+        "  -g MS       with -t, the gap between frames in milliseconds (decimals\n"
+        "              allowed; default 0: as fast as the kernel takes them).\n"
+        "              Without -t it is accepted and unused: frames are paced by\n"
+        "              deadlines, not by a polling period.\n"
+        "  -s S        skip gaps: a pause of more than S seconds between two frames\n"
+        "              of the log is cut out (the next frame goes at once)\n"
+        "  -n COUNT    stop after COUNT frames sent or written\n"
+        "  -x          disable local loopback of the frames sent (CAN_RAW_LOOPBACK\n"
+        "              off: other programs of this machine do not see them)\n"
+        "  -v          print each frame sent on standard output, as a candump log\n"
+        "              line with the interface it went to\n"
+        "  -h, --help  this help\n"
+        "\n"
+        "TX=LOG assignments: frames logged on interface LOG are sent on TX\n"
+        "(vcan0=can0: a log of can0 onto vcan0); TX \"stdout\" writes them to standard\n"
+        "output as candump log lines with LOG as interface (canplayer's extra hook;\n"
+        "in canonical form: upper-case hex, no '.' between bytes). With assignments,\n"
+        "frames of interfaces not assigned are skipped; without, each frame goes to\n"
+        "the interface it was logged on. An ASC file's channel N is interface can<N-1>.\n"
+        "\n"
+        "Options of this tool:\n"
+        "  --speed F         F times as fast as logged (0.5: half speed); default 1\n"
+        "  --start S         only frames from S seconds after the log's first frame\n"
+        "  --end S           ... up to S seconds after it (reading stops there)\n"
+        "  --filter ID[:MASK]  only frames whose id matches: (id & MASK) == (ID & MASK),\n"
+        "                    hex; an ID of more than 3 digits or over 7FF is 29-bit and\n"
+        "                    matches 29-bit frames only. Repeatable.\n"
+        "  --pgn PGN         only 29-bit frames of J1939 PGN (decimal, or hex with 0x),\n"
+        "                    priority, source and PDU1 destination ignored. Repeatable;\n"
+        "                    a frame passes if it matches any --filter or --pgn.\n"
+        "  --dry-run         send nothing: write each frame to standard output as a\n"
+        "                    candump log line, with the interface it would go to\n"
+        "                    (with -t, a converter: ASC or printed output to log)\n"
+        "  --format F        auto (default), log, printed, printed-delta, asc\n"
+        "  --skip-errors     skip bad lines and count them (default: stop at the first,\n"
+        "                    with its file, line and reason, exit 1; frames before it\n"
+        "                    have been sent)\n"
+        "  --skip-unknown    skip frames for interfaces that do not exist, instead of\n"
+        "                    stopping\n"
+        "  --tx-wait-ms MS   how long one frame may wait for room when the kernel's\n"
+        "                    transmit queue is full (ENOBUFS, EAGAIN) before it is\n"
+        "                    dropped and counted; default 100\n"
+        "  --spin-us US      sleep until US microseconds before each deadline, then\n"
+        "                    busy-wait for it: lateness of a few microseconds where the\n"
+        "                    kernel wakes sleepers late (virtual machines), for a CPU\n"
+        "                    kept busy up to US per frame; default 200; 0 sleeps only\n"
+        "  --poll-us US      sleep in steps of at most US microseconds (each to an\n"
+        "                    absolute time) up to the spin; default 0 (one sleep)\n"
+        "  --allow-real-bus  allow sending on CAN interfaces that are not virtual\n"
+        "  --quiet           no progress line\n"
+        "\n"
+        "Real-bus guard: a frame goes only to a virtual CAN interface (vcan, vxcan),\n"
+        "unless --allow-real-bus. Any other interface (a CAN adapter, slcan, or not\n"
+        "CAN at all, e.g. lo) is refused before a single frame goes to it (exit 2).\n"
+        "\n"
+        "Pacing: frame k is due at T0 + (t_k - t_first - start - cut gaps) / speed,\n"
+        "T0 the CLOCK_MONOTONIC time the pass began; the replayer sleeps until\n"
+        "--spin-us before then (clock_nanosleep, TIMER_ABSTIME), busy-waits the rest\n"
+        "and sends. Lateness is the CLOCK_MONOTONIC time after the send returned minus\n"
+        "the deadline; with -t and no -g there is no deadline and no lateness. Each\n"
+        "pass of -l starts afresh. A log without timestamps (candump output without\n"
+        "-t) is sent as with -t.\n"
+        "\n"
+        "At the end (also after Ctrl-C), a summary on standard error: frames sent,\n"
+        "written to standard output, skipped (filters, --start, unassigned or unknown\n"
+        "interfaces), dropped (transmit queue full, or the interface down), parse\n"
+        "errors by reason with the first of each, and lateness p50 / p99 / max. While\n"
+        "it runs, a progress line on standard error when that is a terminal.\n"
+        "\n"
+        "Exit status:\n"
+        "  0    done: every frame sent or written (lines skipped by --skip-errors do\n"
+        "       not change it, unless no frame at all could be read: 1)\n"
+        "  1    input or system error: unreadable or empty log, a bad line (without\n"
+        "       --skip-errors), no such interface, a socket error\n"
+        "  2    refused: an interface that is not virtual CAN, without --allow-real-bus\n"
+        "  3    usage error\n"
+        "  4    done, but frames were dropped (transmit queue full beyond --tx-wait-ms,\n"
+        "       or the interface down: counted, the run goes on)\n"
+        "  130  stopped by SIGINT or SIGTERM (the summary is printed)\n"
+        "\n"
+        "Examples:\n"
+        "  pfe_replay -I drive.log                  # onto the interfaces it was logged on\n"
+        "  pfe_replay -I trip.asc vcan0=can0 --speed 2\n"
+        "                                           # ASC channel 1 (can0) onto vcan0, twice as fast\n"
+        "  pfe_replay -I drive.log --pgn 65265 --start 60 --end 120 --dry-run\n"
+        "                                           # CCVS1 of the second minute, to standard output\n"
+        "  pfe_replay -I trip.asc -t --dry-run > trip.log\n"
+        "                                           # any format to a candump log\n"
+        "\n"
+        "More: docs/harness.md (pacing, how it is tested).\n";
+
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "usage: pfe_replay [-I FILE] [-l N|i] [-t] [-g MS] [-s S] [-n COUNT] [-x] [-v]\n"
-            "                  [--speed F] [--start S] [--end S] [--filter ID[:MASK]]...\n"
-            "                  [--pgn PGN]... [--dry-run] [--format auto|log|printed|printed-delta|asc]\n"
-            "                  [--skip-errors] [--skip-unknown] [--tx-wait-ms MS] [--spin-us US] [--poll-us US]\n"
-            "                  [--allow-real-bus] [--quiet] [TX=LOG | stdout=LOG]...\n"
-            "Replays a candump log, candump output or Vector ASC file onto SocketCAN,\n"
-            "virtual CAN only unless --allow-real-bus. See the header of sim_host/pfe_replay.c.\n");
+    fprintf(f, "%.*s", (int)(strstr(k_manual, "\n\n") - k_manual + 1), k_manual);
+    fprintf(f, "pfe_replay --help: the manual\n");
+}
+
+static void help(void)
+{
+    fputs(k_manual, stdout);
 }
 
 /* A decimal number (digits, optional fraction) >= 0 into *out. */
@@ -837,7 +844,7 @@ static int parse_args(replay_t *rp, int argc, char **argv)
         uint64_t u = 0U;
         bool used_value = true;
         if ((strcmp(a, "-h") == 0) || (strcmp(a, "--help") == 0)) {
-            usage(stdout);
+            help();
             return 1;
         } else if (strcmp(a, "-t") == 0) {
             rp->ignore_ts = true;
