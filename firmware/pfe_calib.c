@@ -6,7 +6,8 @@
 
 #include "pfe_fixed.h"
 
-/* REFERENCE.md section 2; estimates are marked there and here. */
+/* docs/model.md, "The default calibration": each value's source; estimates
+ * are marked there and here. */
 const pfe_vehicle_calib_t pfe_default_vehicle = {
     .mass_kg = 40000U,
     .rot_mass_kg = 1200U,        /* estimate, about 3 % of m */
@@ -25,7 +26,7 @@ const pfe_env_calib_t pfe_default_env = {
     .fuel_energy_j_ml = 35800U,  /* about 43 MJ/kg * 0.835 kg/L */
 };
 
-/* REFERENCE.md section 2: estimated fit to published track results. */
+/* docs/model.md: an estimated fit to published track results. */
 const pfe_drag_table_t pfe_default_drag = {
     .gap_mm = {2000U, 4000U, 6000U, 8000U, 10000U, 15000U, 20000U, 30000U, 40000U, 60000U, 80000U},
     .reduction_bp = {

@@ -5,7 +5,8 @@
  * vehicle (chapter 3 parameters of the thesis), the environment (air density,
  * gravity, diesel energy density), the air-drag reduction table phi_i(d)
  * (eq. 3.4) and the cruise controller. The defaults are those of
- * REFERENCE.md section 2 (a 40 t tractor-semitrailer); several are estimates
+ * docs/model.md, "The default calibration" (a 40 t tractor-semitrailer,
+ * each value with its source); several are estimates
  * that a user replaces with measured values.
  *
  * pfe_calib_check_*() validate ranges before a model is built from a
@@ -32,7 +33,7 @@
 /* Road grade range of the model, parts per million (500000 = 50 %). */
 #define PFE_GRADE_MAX_PPM 500000
 
-/* One vehicle (thesis chapter 3, REFERENCE.md section 2). */
+/* One vehicle (thesis chapter 3; defaults in docs/model.md). */
 typedef struct {
     uint32_t mass_kg;           /* m */
     uint32_t rot_mass_kg;       /* mj, equivalent mass of rotating parts (eq. 3.7) */

@@ -7,7 +7,7 @@
  * codec reads and writes raw values through that table only. A host test
  * (tests/host/test_dbc_codec.c) checks the table against the DBC, both ways.
  *
- * Value states (J1939-71, REFERENCE.md section 3). A decoded signal carries a
+ * Value states (J1939-71, docs/j1939.md). A decoded signal carries a
  * state next to its value:
  *   - raw in the error range (0xFE.., 2-bit 10b)        PFE_SIG_ERROR
  *   - raw in the not-available range (0xFF.., 2-bit 11b) PFE_SIG_NOT_AVAILABLE

@@ -1,7 +1,7 @@
 /*
  * pfe_predict.c - fuel and time over the road ahead (contract in pfe_predict.h).
  *
- * The bounds (thesis 5.1, restated in REFERENCE.md):
+ * The bounds (thesis 5.1, eq. 5.1 to 5.10, restated in docs/model.md):
  *
  *   fuel_lower = [sum over the steps of the SLOW run with Fw > 0 of
  *                 (Fa_lower(v_min) + Fr + M g alpha_s) ds] / (eta_max rho_d)

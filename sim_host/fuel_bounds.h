@@ -1,6 +1,6 @@
 /*
  * fuel_bounds.h - lower and upper bounds on a platoon's fuel over a route
- * (thesis 5.1, as REFERENCE.md section 1 restates them), with the object
+ * (thesis 5.1, eq. 5.1 to 5.10, restated in docs/model.md), with the object
  * model's prediction between them.
  *
  * Fuel is work over eta rho_d, counted only where the wheel force is

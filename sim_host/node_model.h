@@ -204,7 +204,7 @@ void node_sim_summary(const node_sim_t *s, model_summary_t *out);
 /* ---------------------------------------------------------------- object model */
 
 /*
- * Which parameters the point mass gets (thesis 5.1, REFERENCE.md):
+ * Which parameters the point mass gets (thesis 5.1, docs/model.md):
  * NOMINAL  eq. 4.3 to 4.14, phi_i of the desired gap at the set speed.
  * SLOWEST  the v_min run: every truck with the largest cw Af and no drag
  *          reduction (the factor N of eq. 5.5), Pmax and traction per unit

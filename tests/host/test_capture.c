@@ -8,7 +8,7 @@
  * Input files are written to a fresh directory from mkdtemp() under $TMPDIR
  * (default /tmp), removed at the end. Expected values are hand-computed
  * literals (the SplitMix64 outputs from its published definition, the fuel
- * rate from REFERENCE.md's default truck).
+ * rate from the default truck, docs/model.md).
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -371,7 +371,7 @@ static void test_bus_ref_flat(void **state)
     assert_int_equal(bus_ref_init(&r, 1U, 0U, 10000U), 0);
     drive_flat(&r, 1000003U, 2000U);
     assert_true(bus_ref_valid(&r));
-    /* REFERENCE.md: 129.14 kW at the wheels (air 2418.75 N + rolling
+    /* docs/model.md: 129.14 kW at the wheels (air 2418.75 N + rolling
      * 2746.8 N at 25 m/s) + 4 kW auxiliary, / (0.40 * 35.8 MJ/L) =
      * 9.2974e-3 L/s = 33.4707 L/h. */
     assert_true(fabs(bus_ref_own_rate(&r) * 3600.0 - 33.4707) < 0.005);

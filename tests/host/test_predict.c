@@ -184,7 +184,7 @@ static void test_hilly_from_halfway(void **state)
     check_road("hilly", 5U, 6000U);
 }
 
-/* One truck, flat 12 km at 90 km/h (REFERENCE.md defaults): 5166 N of
+/* One truck, flat 12 km at 90 km/h (default calibration, docs/model.md): 5166 N of
  * resistance over 12000 m is 61.99 MJ, 4 kW of auxiliaries over 480 s 1.92
  * MJ; (61.99 + 1.92) MJ / (0.40 * 35800 J/mL) = 4.463 L. With one truck and
  * no grade the bounds' runs equal the nominal one: the bounds lie within

@@ -1,6 +1,6 @@
 /* Unit tests: J1939 ids (pfe_can) and the frame codec (pfe_codec).
  * Expected bytes and values are hand-computed from can_dbc/pfe.dbc and
- * REFERENCE.md section 3; tangents from a 40-digit reference. Runs on the
+ * docs/j1939.md (signals and value states); tangents from a 40-digit reference. Runs on the
  * host and on the Cortex-M4: no files, large objects static, and no float
  * but the double-precision tangent that the pitch-to-grade conversion is
  * checked against. */

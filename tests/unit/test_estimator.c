@@ -1,5 +1,5 @@
 /* Unit tests: speed filter (pfe_accel) and the 10 ms estimator (pfe_estimator).
- * Expected values are hand-computed from REFERENCE.md section 2 defaults. */
+ * Expected values are hand-computed from the default calibration (docs/model.md). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stdbool.h>

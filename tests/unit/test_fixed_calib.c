@@ -44,7 +44,7 @@ static void test_drag_reduction_table(void **state)
 {
     (void)state;
     const pfe_drag_table_t *d = &pfe_default_drag;
-    /* REFERENCE.md section 2, at table points. */
+    /* The default drag table (docs/model.md), at table points. */
     assert_int_equal(pfe_drag_reduction_bp(d, 0U, 5U, 10000U), 800);
     assert_int_equal(pfe_drag_reduction_bp(d, 1U, 5U, 10000U), 3100);
     assert_int_equal(pfe_drag_reduction_bp(d, 2U, 5U, 10000U), 3500);

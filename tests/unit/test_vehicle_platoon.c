@@ -1,5 +1,5 @@
 /* Unit tests: chapter 3 vehicle (pfe_vehicle) and chapter 4 aggregates (pfe_platoon).
- * Expected values are hand-computed from REFERENCE.md section 2 defaults. */
+ * Expected values are hand-computed from the default calibration (docs/model.md). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
