@@ -1,20 +1,33 @@
 /*
- * cal2c - turns a truck calibration file (sim_host/truck_cal.h) into C
- * source for a Cortex-M4 replay image, which reads no file: the const
- * calibrations and image_calib_apply() of hal/mps2/image_calib.h.
+ * cal2c - turns a truck calibration file (sim_host/truck_cal.h) into C source
+ * for a Cortex-M4 replay image: the const calibrations and
+ * image_calib_apply() of hal/mps2/image_calib.h, set as truck_cal_apply()
+ * does on the host.
  *
- *     cal2c CAL OUT.c
- *
- * OUT.c sets the same configuration as truck_cal_apply() on the host
- * (pfe_ecu_replay --calib CAL). It is written under a temporary name and
- * renamed, so a failed run leaves no partial file. Exit status: 0 done, 1
- * write failure, 2 usage error or a bad calibration file (its message on
- * stderr, as every tool's --calib gives it).
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <stdio.h>
 #include <string.h>
 
 #include "truck_cal.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: cal2c CAL OUT.c\n"
+    "\n"
+    "Turns a truck calibration file into C source for a Cortex-M4 replay image,\n"
+    "which reads no file (make firmware CALIB=CAL builds one). OUT.c sets the\n"
+    "same configuration as pfe_ecu_replay --calib CAL does on the host. It is\n"
+    "written under a temporary name and renamed, so a failed run leaves no\n"
+    "partial file.\n"
+    "\n"
+    "Exit status: 0 done, 1 write failure, 2 usage error or a bad calibration\n"
+    "file (its message on standard error, as every tool's --calib gives it).\n"
+    "\n"
+    "Example:\n"
+    "  cal2c mytruck.cal build/gen/calib_mytruck.c\n";
 
 static void put_vehicle(FILE *out, const char *name, const pfe_vehicle_calib_t *v)
 {
@@ -83,8 +96,12 @@ static int write_c(FILE *out, const char *cal_path, const truck_cal_t *cal)
 
 int main(int argc, char **argv)
 {
+    if (cli_help_asked(argc, argv)) {
+        cli_help(k_manual);
+        return 0;
+    }
     if (argc != 3) {
-        fprintf(stderr, "usage: cal2c CAL OUT.c\n");
+        cli_usage(stderr, k_manual, "cal2c");
         return 2;
     }
     static truck_cal_t cal;

@@ -1,44 +1,10 @@
 /*
- * drivegen - a drive as the module would see it on the bus, as a candump log.
+ * drivegen - a drive as the module would see it on the bus, as a candump log:
+ * the reference object model drives a road, each frame encoded with the
+ * firmware's codec.
  *
- *   drivegen (--road FILE.csv | --segment LEN_M:GRADE_PCT ...) [--set-speed-kmh V]
- *            [--vehicles N] [--position P] [--gap-m D]
- *            [--seed S] [--speed-noise-kmh SD] [--pitch-noise-deg SD]
- *            [--no-config] [--no-preview] [--preview-period-s S]
- *            [--preview-samples N] [--preview-spacing-m M]
- *            [--iface IF] [--source SA] [--config-source SA] [--preview-source SA]
- *            [--out LOG] [--calib FILE]
- *
- * The platoon (the double-precision reference object model, N trucks D
- * metres apart; each truck's calibration from FILE, sim_host/truck_cal.h:
- * the own truck's at position P, a [position k] section's at k, else the
- * default calibration, default 1 truck, 10 m) drives the
- * road at its set speed under cruise control. On the bus, every frame
- * encoded with the firmware's codec (can_dbc/pfe.dbc):
- *   - CCVS1 every 100 ms: the speed (SPN 84, 1/256 km/h), from source SA;
- *   - SSI every 10 ms: the pitch of the road under the platoon (SPN 3318,
- *     0.002 deg), from source SA;
- *   - PFE_PlatoonConfig every 1000 ms (its DBC period), unless --no-config:
- *     N, position P, gap D, the time gap D / set speed and the set speed,
- *     from --config-source (default 0xE0);
- *   - PFE_GradePreview, unless --no-preview: every --preview-period-s
- *     (default 10 s) a burst of one header and ceil(count / 3) data frames,
- *     5 ms apart, starting 2.5 ms after a 10 ms tick; count is
- *     --preview-samples (default 1000, at most what is left of the road)
- *     road grades --preview-spacing-m apart (default 12 m) from the
- *     platoon's position at that tick; PreviewId counts up modulo 16; from
- *     --preview-source (default 0xE1).
- * Sensor noise, off by default: a normal-like deviate of standard deviation
- * --speed-noise-kmh added to each speed sample before SPN 84's quantisation
- * (then clamped to 0 .. 250.996 km/h), and one of --pitch-noise-deg added to
- * each pitch; drawn from two SplitMix64 streams seeded from --seed (default
- * 1; sim_host/drive_trace.h), so a log is the same file on every machine.
- *
- * Lines are candump's log format, "(seconds.micro) IF ID#DATA", starting at
- * 1700000000.000000, in time order (frames of one instant: CCVS1, SSI,
- * PFE_PlatoonConfig).
- * Exit status 0; 1 when the output cannot be written; 2 on bad arguments or
- * input (message on stderr).
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <errno.h>
 #include <math.h>
@@ -54,6 +20,73 @@
 #include "drive_trace.h"
 #include "road_csv.h"
 #include "truck_cal.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: drivegen (--road FILE.csv | --segment LEN_M:GRADE_PCT ...) [--set-speed-kmh V]\n"
+    "                [--vehicles N] [--position P] [--gap-m D]\n"
+    "                [--seed S] [--speed-noise-kmh SD] [--pitch-noise-deg SD]\n"
+    "                [--no-config] [--no-preview] [--preview-period-s S]\n"
+    "                [--preview-samples N] [--preview-spacing-m M]\n"
+    "                [--iface IF] [--source SA] [--config-source SA] [--preview-source SA]\n"
+    "                [--out LOG] [--calib FILE]\n"
+    "\n"
+    "Writes a drive as the module would see it on the bus, as a candump log: a\n"
+    "platoon (the double-precision reference object model) drives the road at\n"
+    "its set speed under cruise control, and every frame is encoded with the\n"
+    "firmware's codec (can_dbc/pfe.dbc).\n"
+    "\n"
+    "The road and the platoon:\n"
+    "  --road FILE.csv        a road profile (grades at a fixed spacing)\n"
+    "  --segment LEN_M:GRADE_PCT\n"
+    "                         or a road of segments, each LEN_M metres (10 ..\n"
+    "                         1e6) at GRADE_PCT percent (within +-30); repeatable\n"
+    "  --set-speed-kmh V      set speed, 5 .. 250 (default 90)\n"
+    "  --vehicles N           trucks, 1 .. 32 (default 1)\n"
+    "  --position P           the module's truck, 0 (lead) .. N - 1 (default 0)\n"
+    "  --gap-m D              gap between trucks, 0 .. 642.55 m (default 10)\n"
+    "  --calib FILE           the trucks' calibration: the own truck's at position\n"
+    "                         P, a [position k] section's at k, else the default\n"
+    "\n"
+    "On the bus:\n"
+    "  CCVS1 every 100 ms: the speed (SPN 84, 1/256 km/h), from --source SA\n"
+    "  (default 0); SSI every 10 ms: the pitch of the road under the platoon\n"
+    "  (SPN 3318, 0.002 deg), from --source SA;\n"
+    "  --no-config            no PFE_PlatoonConfig (default: every 1000 ms, its\n"
+    "                         DBC period: N, position P, gap D, the time gap D /\n"
+    "                         set speed and the set speed)\n"
+    "  --config-source SA     its sender (default 0xE0)\n"
+    "  --no-preview           no PFE_GradePreview (default: a burst of one header\n"
+    "                         and ceil(count / 3) data frames, 5 ms apart, starting\n"
+    "                         2.5 ms after a 10 ms tick; PreviewId counts up\n"
+    "                         modulo 16)\n"
+    "  --preview-period-s S   a burst every S seconds, 0.5 .. 3600 (default 10)\n"
+    "  --preview-samples N    grades per preview, 1 .. 1000 (default 1000, at\n"
+    "                         most what is left of the road)\n"
+    "  --preview-spacing-m M  their spacing, 1 .. 250 m (default 12), from the\n"
+    "                         platoon's position at that tick\n"
+    "  --preview-source SA    its sender (default 0xE1)\n"
+    "  --iface IF             the interface name in the log (default vcan0)\n"
+    "  --out LOG              the log (default standard output)\n"
+    "\n"
+    "Sensor noise, off by default, drawn from two SplitMix64 streams seeded from\n"
+    "--seed S (default 1), so that a log is the same file on every machine:\n"
+    "  --speed-noise-kmh SD   a normal-like deviate of standard deviation SD\n"
+    "                         (0 .. 20) added to each speed sample before SPN 84's\n"
+    "                         quantisation (then clamped to 0 .. 250.996 km/h)\n"
+    "  --pitch-noise-deg SD   one of SD (0 .. 5) added to each pitch\n"
+    "\n"
+    "Lines are candump's log format, \"(seconds.micro) IF ID#DATA\", starting at\n"
+    "1700000000.000000, in time order (frames of one instant: CCVS1, SSI,\n"
+    "PFE_PlatoonConfig).\n"
+    "\n"
+    "Exit status 0; 1 when the output cannot be written; 2 on bad arguments or\n"
+    "input (message on standard error).\n"
+    "\n"
+    "Examples:\n"
+    "  drivegen --road sim_host/data/roads/hilly.csv --vehicles 5 --position 1 --out hilly.log\n"
+    "  drivegen --segment 600:0 --segment 750:2 --no-preview --out climb.log\n";
 
 #define MAX_SEGMENTS 64
 #define SEGMENT_SPACING_MM 10000U
@@ -97,14 +130,7 @@ static void print_frame(FILE *out, uint64_t t_us, const char *ifname, const pfe_
 
 static void usage(void)
 {
-    fprintf(stderr,
-            "usage: drivegen (--road FILE.csv | --segment LEN_M:GRADE_PCT ...) [--set-speed-kmh V]\n"
-            "                [--vehicles N] [--position P] [--gap-m D]\n"
-            "                [--seed S] [--speed-noise-kmh SD] [--pitch-noise-deg SD]\n"
-            "                [--no-config] [--no-preview] [--preview-period-s S]\n"
-            "                [--preview-samples N] [--preview-spacing-m M]\n"
-            "                [--iface IF] [--source SA] [--config-source SA] [--preview-source SA]\n"
-            "                [--out LOG] [--calib FILE]\n");
+    cli_usage(stderr, k_manual, "drivegen");
 }
 
 /* 0, or 2 after a message. */
@@ -389,6 +415,10 @@ static int write_drive(const options_t *o, const road_ppm_t *road, const drive_t
 
 int main(int argc, char **argv)
 {
+    if (cli_help_asked(argc, argv)) {
+        cli_help(k_manual);
+        return 0;
+    }
     static options_t o;
     static truck_cal_t cal;
     bool have_cal = false;

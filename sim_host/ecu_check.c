@@ -1,26 +1,10 @@
 /*
  * ecu_check - judge a module's answers on a recorded bus against the
- * double-precision reference.
+ * double-precision reference (sim_host/bus_ref.h, its BUS_REF_HISTORY ticks),
+ * for the end-to-end runs on vcan.
  *
- *   ecu_check CAPTURE.log [--module-sa SA] [--warmup-s S]
- *
- * CAPTURE is one candump log (`candump -L`, read by sim_host/capture.h) of
- * everything on the bus: the drive's CCVS1, SSI and PFE_PlatoonConfig
- * frames and the module's answers (source address SA, default 0x8C). The
- * reference estimator steps every 10 ms on the same input frames, handling
- * them as the module does (sim_host/bus_ref.h; one truck until a
- * PFE_PlatoonConfig says otherwise, default calibration).
- * Checked from the warm-up to the last input frame (after it the module's
- * inputs time out, as they should):
- *   every LFE1 fuel rate within 1 % of the reference at its time, where
- *     the reference is at least 5 L/h (below, near fuel cut, the frames are
- *     counted, not judged: LFE1's own step, 0.05 L/h, is 1 % of 5 L/h): the best
- *     of the reference ticks in the BUS_REF_HISTORY * 10 ms before it, since
- *     the module's tick phase is not in the capture and a late tick of a
- *     loaded host sends a frame up to a few ticks after its estimate; and
- *     never "not available";
- *   the last HRLFC total fuel used within 0.5 % of the reference's.
- * Prints the figures; exit status 0 pass, 1 fail, 2 bad input.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <math.h>
 #include <stdio.h>
@@ -33,11 +17,43 @@
 
 #define RELATIVE_FROM_L_S (5.0 / 3600.0) /* rates judged relatively from 5 L/h */
 #include "capture.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: ecu_check CAPTURE.log [--module-sa SA] [--warmup-s S]\n"
+    "\n"
+    "Judges a module's answers on a recorded bus against the double-precision\n"
+    "reference (the end-to-end runs on vcan).\n"
+    "\n"
+    "CAPTURE is one candump log (candump -L) of\n"
+    "everything on the bus: the drive's CCVS1, SSI and PFE_PlatoonConfig\n"
+    "frames and the module's answers (source address SA, default 0x8C). The\n"
+    "reference estimator steps every 10 ms on the same input frames, handling\n"
+    "them as the module does (one truck until a\n"
+    "PFE_PlatoonConfig says otherwise, default calibration).\n"
+    "Checked from the warm-up to the last input frame (after it the module's\n"
+    "inputs time out, as they should):\n"
+    "  every LFE1 fuel rate within 1 % of the reference at its time, where\n"
+    "    the reference is at least 5 L/h (below, near fuel cut, the frames are\n"
+    "    counted, not judged: LFE1's own step, 0.05 L/h, is 1 % of 5 L/h): the best\n"
+    "    of the reference ticks in the 60 ms before it, since\n"
+    "    the module's tick phase is not in the capture and a late tick of a\n"
+    "    loaded host sends a frame up to a few ticks after its estimate; and\n"
+    "    never \"not available\";\n"
+    "  the last HRLFC total fuel used within 0.5 % of the reference's.\n"
+    "Prints the figures; exit status 0 pass, 1 fail, 2 bad input.\n"
+    "\n"
+    "The warm-up is --warmup-s S seconds after the first input frame (default 5).\n";
 
 int main(int argc, char **argv)
 {
+    if (cli_help_asked(argc, argv)) {
+        cli_help(k_manual);
+        return 0;
+    }
     if (argc < 2) {
-        fprintf(stderr, "usage: ecu_check CAPTURE.log [--module-sa SA] [--warmup-s S]\n");
+        cli_usage(stderr, k_manual, "ecu_check");
         return 2;
     }
     unsigned long module_sa = PFE_CODEC_DEFAULT_ADDRESS;

@@ -1,22 +1,11 @@
 /*
- * pfe_ecu - the module's firmware as a Linux process on SocketCAN.
+ * pfe_ecu - the module's firmware as a Linux process on SocketCAN: the ECU
+ * loop (firmware/pfe_ecu.h, through hal/hal_ecu_loop.h) every 10 ms on
+ * CLOCK_MONOTONIC absolute deadlines (hal/posix/hal_time_posix.h), fuel
+ * totals in a file.
  *
- *   pfe_ecu --iface IF --nvm FILE [--address SA] [--save-interval-ms MS]
- *           [--vehicles N --position P --gap-cm D] [--allow-real-bus]
- *           [--duration-s S] [--calib FILE]
- *
- * FILE: the truck's calibration (sim_host/truck_cal.h), else the default.
- * Runs the ECU loop (firmware/pfe_ecu.h, through hal/hal_ecu_loop.h) every
- * 10 ms on CLOCK_MONOTONIC absolute deadlines (hal/posix/hal_time_posix.h): receives every frame waiting
- * on IF, ticks, sends what the tick produced, saves fuel totals to FILE
- * when due. A late tick is
- * counted as an overrun (and the schedule resynchronised), a frame the
- * kernel would not take as a transmit drop. SIGINT or SIGTERM stop it
- * cleanly with a final save. Sending on an interface that is not virtual
- * CAN is refused unless --allow-real-bus is given.
- *
- * Exit status: 0 after a clean stop, 1 on a runtime failure, 2 on bad
- * arguments.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -37,6 +26,48 @@
 #include "hal/posix/hal_time_posix.h"
 #include "hal/socketcan/hal_socketcan.h"
 #include "truck_cal.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: pfe_ecu --iface IF --nvm FILE [--address SA] [--save-interval-ms MS]\n"
+    "               [--vehicles N --position P --gap-cm D] [--allow-real-bus]\n"
+    "               [--duration-s S] [--calib FILE]\n"
+    "\n"
+    "The module's firmware as a Linux process on SocketCAN.\n"
+    "\n"
+    "  --iface IF             the CAN interface (virtual CAN: vcan, vxcan)\n"
+    "  --nvm FILE             where the fuel totals are kept (created when missing)\n"
+    "  --address SA           the source address claimed at start-up (default 0x8C)\n"
+    "  --save-interval-ms MS  how often the totals are saved, 1000 .. 3600000\n"
+    "                         (default 10000)\n"
+    "  --vehicles N, --position P, --gap-cm D\n"
+    "                         the platoon until a PFE_PlatoonConfig arrives\n"
+    "                         (default 1 truck, position 0, 1000 cm)\n"
+    "  --allow-real-bus       allow an interface that is not virtual CAN\n"
+    "  --duration-s S         stop after S seconds (default: run until stopped)\n"
+    "  --calib FILE           the truck's calibration file (default: the default\n"
+    "                         calibration)\n"
+    "  --help                 this help\n"
+    "\n"
+    "Every 10 ms, on CLOCK_MONOTONIC absolute deadlines, it receives every frame\n"
+    "waiting on IF, ticks the ECU, sends what the tick produced and saves the fuel\n"
+    "totals to FILE when due. A late tick is counted as an overrun (and the\n"
+    "schedule resynchronised), a frame the kernel would not take as a transmit\n"
+    "drop. SIGINT or SIGTERM (Ctrl-C) stop it cleanly with a final save.\n"
+    "\n"
+    "It refuses an interface that is not virtual CAN unless given\n"
+    "--allow-real-bus, and says which case it is: an empty name, no such\n"
+    "interface, not a CAN interface (lo, eth0: refused even with\n"
+    "--allow-real-bus), a real CAN bus without --allow-real-bus.\n"
+    "\n"
+    "Exit status: 0 after a clean stop; 1 on a runtime failure or a refused\n"
+    "interface (missing, not CAN, a real bus without --allow-real-bus); 2 on bad\n"
+    "arguments (an empty or over-long interface name too).\n"
+    "\n"
+    "Examples:\n"
+    "  pfe_ecu --iface vcan0 --nvm fuel.nvm\n"
+    "  pfe_ecu --iface can0 --nvm fuel.nvm --allow-real-bus --calib mytruck.cal\n";
 
 static volatile sig_atomic_t g_stop;
 
@@ -94,9 +125,12 @@ static int check_iface(const char *iface, bool allow_real)
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: pfe_ecu --iface IF --nvm FILE [--address SA] [--save-interval-ms MS]\n"
-               "               [--vehicles N --position P --gap-cm D] [--allow-real-bus]\n"
-               "               [--duration-s S] [--calib FILE]\n");
+    /* --help: the whole manual; a usage error: its synopsis. */
+    if (f == stdout) {
+        cli_help(k_manual);
+    } else {
+        cli_usage(f, k_manual, "pfe_ecu");
+    }
 }
 
 int main(int argc, char **argv)

@@ -1,34 +1,10 @@
 /*
  * pfe_ecu_replay - the module's firmware run over a CAN log on the host, in
- * logical time (hal/replay/hal_replay_ecu.h).
+ * logical time (hal/replay/hal_replay_ecu.h), the log read through
+ * sim_host/replay_source.h; its twin on the Cortex-M4 is hal/mps2/main_ecu.c.
  *
- *   pfe_ecu_replay --log LOG [--record OUT] [--address SA] [--save-interval-ms MS]
- *                  [--vehicles N] [--position P] [--gap-cm D]
- *                  [--format auto|log|printed|printed-delta|asc] [--calib FILE]
- *
- * FILE is the truck's calibration (sim_host/truck_cal.h; default: the
- * default calibration); the Cortex-M4 image has it compiled in instead
- * (sim_host/cal2c.c).
- * LOG is a CAN log in any form the host's tools read (sim_host/canlog.h,
- * through sim_host/replay_source.h): candump -L, candump's printed output
- * with timestamps (-t a, z, A; -t d with --format printed-delta, since it
- * looks like -t z), or Vector ASC; the form is detected from the first
- * lines unless --format says it. A log recorded mid-drive (no address
- * claims, hundreds of PGNs the module does not read) replays as it is. The
- * ECU ticks every 10 ms of log time from the first frame to one second
- * after the last, with NVM erased at start; OUT (default: none) receives
- * the bus as candump -L would show it, the log's frames and the module's.
- * The Cortex-M4 image build/m4/pfe_ecu_mps2.elf runs the same code on the
- * same log with the same options and must write the same OUT byte for byte
- * (make check-replay; the image reads candump -L and the printed form).
- *
- * Prints one summary line on standard output (hal_replay_ecu_summary()),
- * then what identification found (mass, aux power, converged, samples).
- * Exit status: 0; 1 when the log had bad lines (each counted and skipped,
- * the first named on standard error with its file, line and reason) or OUT
- * could not be written; 2 on bad arguments, a log that cannot be read (no
- * such file, a directory) or one with no classic CAN frame (the reason
- * named).
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <errno.h>
 #include <stdio.h>
@@ -37,8 +13,56 @@
 #include "hal/replay/hal_replay_ecu.h"
 #include "sim_host/replay_source.h"
 #include "sim_host/truck_cal.h"
+#include "lib/cli_help.h"
 
-#define USAGE HAL_REPLAY_ECU_USAGE " [--format auto|log|printed|printed-delta|asc] [--calib FILE]"
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: pfe_ecu_replay --log LOG [--record OUT] [--address SA] [--save-interval-ms MS]\n"
+    "                      [--vehicles N] [--position P] [--gap-cm D]\n"
+    "                      [--format auto|log|printed|printed-delta|asc] [--calib FILE]\n"
+    "\n"
+    "The module's firmware run over a CAN log on the host, in the log's own time:\n"
+    "no bus, no real time, the same result on every machine.\n"
+    "\n"
+    "  --log LOG              the CAN log\n"
+    "  --record OUT           the bus as candump -L would show it, the log's\n"
+    "                         frames and the module's (default: none)\n"
+    "  --address SA, --save-interval-ms MS, --vehicles N, --position P, --gap-cm D\n"
+    "                         as pfe_ecu's (defaults 0x8C, 10000 ms, 1 truck,\n"
+    "                         position 0, 1000 cm)\n"
+    "  --format F             auto (default: detected from the first lines), log,\n"
+    "                         printed, printed-delta, asc\n"
+    "  --calib FILE           the truck's calibration file (default: the default\n"
+    "                         calibration)\n"
+    "  --help                 this help\n"
+    "\n"
+    "LOG is a CAN log as benches record it: candump -L, candump's printed output\n"
+    "with timestamps (-t a, z, A; -t d with --format printed-delta, since it looks\n"
+    "like -t z), or Vector ASC. A log recorded mid-drive (no address claims,\n"
+    "hundreds of PGNs the module does not read) replays as it is. The ECU ticks\n"
+    "every 10 ms of log time from the first frame to one second after the last,\n"
+    "with NVM erased at start; a silence of over 10 s (a logger whose clock\n"
+    "jumps) is crossed in one jump.\n"
+    "FD, remote and error frames are skipped and counted.\n"
+    "\n"
+    "The Cortex-M4 image build/m4/pfe_ecu_mps2.elf runs the same code on the same\n"
+    "log with the same options (scripts/run_m4.sh) and must write the same OUT\n"
+    "byte for byte (make check-replay; the image reads candump -L and the printed\n"
+    "form, and has its calibration compiled in: make firmware CALIB=FILE).\n"
+    "\n"
+    "Prints one summary line on standard output, then what identification found\n"
+    "(mass, aux power, converged, samples).\n"
+    "\n"
+    "Exit status: 0; 1 when the log had bad lines (each counted and skipped, the\n"
+    "first named on standard error with its file, line and reason) or OUT could\n"
+    "not be written; 2 on bad arguments, a log that cannot be read (no such\n"
+    "file, a directory, printed output without timestamps) or one with no\n"
+    "classic CAN frame (the reason named).\n"
+    "\n"
+    "Examples:\n"
+    "  pfe_ecu_replay --log drive.log --record bus.log\n"
+    "  pfe_ecu_replay --log mytruck.log --record bus.log --calib mytruck.cal\n";
+
 #define MAX_ARGS 64
 
 static int32_t write_file(void *ctx, const uint8_t *buf, uint32_t len)
@@ -73,6 +97,10 @@ static int take_format(int argc, char **argv, char **kept, int *n_kept, canlog_f
 
 int main(int argc, char **argv)
 {
+    if (cli_help_asked(argc, argv)) {
+        cli_help(k_manual);
+        return 0;
+    }
     static truck_cal_t cal;
     bool have_cal = false;
     char cal_err[TRUCK_CAL_ERR_MAX];
@@ -84,18 +112,19 @@ int main(int argc, char **argv)
     int n_kept = 0;
     canlog_format_t format = CANLOG_FMT_AUTO;
     if (take_format(argc, argv, kept, &n_kept, &format) != 0) {
-        fprintf(stderr, "usage: pfe_ecu_replay " USAGE "\n");
+        cli_usage(stderr, k_manual, "pfe_ecu_replay");
         return 2;
     }
     hal_replay_ecu_args_t args;
     char err[CANLOG_MSG_MAX];
     const int arc = hal_replay_ecu_args(n_kept, kept, &args, err, sizeof err);
     if (arc != 0) {
-        FILE *f = (arc > 0) ? stdout : stderr;
         if (arc < 0) {
             fprintf(stderr, "pfe_ecu_replay: %s\n", err);
+            cli_usage(stderr, k_manual, "pfe_ecu_replay");
+        } else {
+            cli_help(k_manual);
         }
-        fprintf(f, "usage: pfe_ecu_replay " USAGE "\n");
         return (arc > 0) ? 0 : 2;
     }
     if (have_cal) {

@@ -1,44 +1,9 @@
 /*
- * pfe_faults - input faults in a drive log, and the verdict on how the
- * module answered them.
+ * pfe_faults - input faults in a drive log (k_faults below), and the verdict
+ * on how the module answered them.
  *
- *   pfe_faults inject DRIVE.log OUT.log
- *   pfe_faults judge CAPTURE.log [--module-sa SA] [--slack-ms MS]
- *
- * inject copies a drive (candump -L, CCVS1 and SSI frames, as drivegen
- * writes it) with the faults of k_faults below, at fixed times after its
- * first frame: CCVS1 stops for 5 s; SSI stops for 2 s; CCVS1 and SSI each
- * carry a parameter-specific out-of-range raw value (0xFB00) for 2 s, then
- * their sender's J1939 error value for 2 s. The drive must last past the
- * last fault (60 s).
- *
- * judge reads a capture of the bus (the faulty inputs and the module's
- * answers, source address SA, default 0x8C) and checks each fault:
- *   - onset: for a silence, the input's last frame before the gap; for a
- *     bad value, the first frame that carries it (both found by content
- *     from 0.5 s before the fault's nominal time: a capture's clock drifts
- *     from the log's). The input returns with the first frame after the
- *     gap, or the first valid value. The deadline is onset + three periods of
- *     the input (CCVS1 100 ms, SSI 10 ms) + one 10 ms tick for a silence,
- *     onset + one tick for a bad value;
- *   - the module's last LFE1 before the onset was valid (else the check
- *     proves nothing);
- *   - every LFE1, PFE_OwnFuel and PFE_PlatoonFuel fuel rate sent after deadline + slack
- *     until the input returns is "not available", and there is at least
- *     one;
- *   - every PFE_Status sent in that time gives the input's state (not
- *     available, error, out of range) and mode "no estimate", and there is
- *     at least one;
- *   - after the input returns, an LFE1 is valid again within 1 s, and the
- *     next PFE_Status gives the input as valid.
- * A silent SSI is the exception: the module then assumes the road flat
- * (can_dbc/pfe.dbc, PFE_InputStatus GradeSource), so its rates stay
- * available; the judge checks that none is "not available", that every
- * PFE_Status in the window gives the grade input not available and mode
- * "degraded", and every PFE_InputStatus grade source "assumed flat".
- * Slack (default 0) allows for a tick phase the capture does not show: 0
- * for a replay in logical time, a tick or two over a real bus.
- * Prints a line per fault; exit status 0 pass, 1 fail, 2 bad input.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <errno.h>
 #include <stdio.h>
@@ -49,6 +14,54 @@
 #include "firmware/pfe_codec.h"
 #include "hal/replay/hal_replay.h"
 #include "sim_host/replay_source.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: pfe_faults inject DRIVE.log OUT.log\n"
+    "       pfe_faults judge CAPTURE.log [--module-sa SA] [--slack-ms MS]\n"
+    "\n"
+    "Input faults in a drive log, and the verdict on how the module answered\n"
+    "them.\n"
+    "\n"
+    "inject copies a drive (candump -L, CCVS1 and SSI frames, as drivegen\n"
+    "writes it) with these faults, at fixed times after its\n"
+    "first frame: CCVS1 stops for 5 s; SSI stops for 2 s; CCVS1 and SSI each\n"
+    "carry a parameter-specific out-of-range raw value (0xFB00) for 2 s, then\n"
+    "their sender's J1939 error value for 2 s. The drive must last past the\n"
+    "last fault (60 s).\n"
+    "\n"
+    "judge reads a capture of the bus (the faulty inputs and the module's\n"
+    "answers, source address SA, default 0x8C) and checks each fault:\n"
+    "  - onset: for a silence, the input's last frame before the gap; for a\n"
+    "    bad value, the first frame that carries it (both found by content\n"
+    "    from 0.5 s before the fault's nominal time: a capture's clock drifts\n"
+    "    from the log's). The input returns with the first frame after the\n"
+    "    gap, or the first valid value. The deadline is onset + three periods of\n"
+    "    the input (CCVS1 100 ms, SSI 10 ms) + one 10 ms tick for a silence,\n"
+    "    onset + one tick for a bad value;\n"
+    "  - the module's last LFE1 before the onset was valid (else the check\n"
+    "    proves nothing);\n"
+    "  - every LFE1, PFE_OwnFuel and PFE_PlatoonFuel fuel rate sent after deadline + slack\n"
+    "    until the input returns is \"not available\", and there is at least\n"
+    "    one;\n"
+    "  - every PFE_Status sent in that time gives the input's state (not\n"
+    "    available, error, out of range) and mode \"no estimate\", and there is\n"
+    "    at least one;\n"
+    "  - after the input returns, an LFE1 is valid again within 1 s, and the\n"
+    "    next PFE_Status gives the input as valid.\n"
+    "A silent SSI is the exception: the module then assumes the road flat\n"
+    "(can_dbc/pfe.dbc, PFE_InputStatus GradeSource), so its rates stay\n"
+    "available; the judge checks that none is \"not available\", that every\n"
+    "PFE_Status in the window gives the grade input not available and mode\n"
+    "\"degraded\", and every PFE_InputStatus grade source \"assumed flat\".\n"
+    "Slack (default 0) allows for a tick phase the capture does not show: 0\n"
+    "for a replay in logical time, a tick or two over a real bus.\n"
+    "Prints a line per fault; exit status 0 pass, 1 fail, 2 bad input.\n"
+    "\n"
+    "Example:\n"
+    "  pfe_faults inject drive.log faults.log\n"
+    "  pfe_ecu_replay --log faults.log --record bus.log && pfe_faults judge bus.log\n";
 
 #define MAX_FRAMES 400000U
 #define TICK_US 10000U
@@ -423,12 +436,15 @@ static int judge_one(const fault_t *ft, uint64_t t0, uint8_t sa, uint64_t slack_
 
 int main(int argc, char **argv)
 {
+    if (cli_help_asked(argc, argv)) {
+        cli_help(k_manual);
+        return 0;
+    }
     if ((argc == 4) && (strcmp(argv[1], "inject") == 0)) {
         return inject(argv[2], argv[3]);
     }
     if ((argc < 3) || (strcmp(argv[1], "judge") != 0)) {
-        fprintf(stderr, "usage: pfe_faults inject DRIVE.log OUT.log\n"
-                        "       pfe_faults judge CAPTURE.log [--module-sa SA] [--slack-ms MS]\n");
+        cli_usage(stderr, k_manual, "pfe_faults");
         return 2;
     }
     unsigned long sa = 0x8CU, slack_ms = 0U;

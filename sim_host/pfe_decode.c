@@ -1,54 +1,10 @@
 /*
- * pfe_decode - a CAN log decoded through the DBC: one line, or one CSV row,
- * per frame.
+ * pfe_decode - a CAN log decoded through the DBC (sim_host/dbc.h): one line,
+ * or one CSV row, per frame; J1939 not-available, error and out-of-range
+ * values shown as such, never as numbers.
  *
- *   pfe_decode [--dbc FILE] [--csv] [--message NAME]... [--format F]
- *              [--skip-errors] [LOG | -]
- *
- * LOG: a candump log, candump's printed output or a Vector ASC file
- * (sim_host/canlog.h), default standard input. The DBC (default
- * can_dbc/pfe.dbc, else the one next to this program's build folder) is read
- * with sim_host/dbc.h.
- *
- * Matching: a 29-bit frame matches a 29-bit DBC message of the same J1939
- * PGN, priority and source address masked, and for a PDU1 PGN (PF < 240)
- * the destination too; an 11-bit frame matches an 11-bit message of the same
- * id. --message NAME (repeatable) keeps only those messages.
- *
- * Values: raw * factor + offset, computed exactly from the factor and
- * offset as written in the DBC and printed with as many decimals as they
- * need (trailing zeros dropped). Shown instead of a number:
- *   NA     not available (J1939-71: all ones; for a 2-bit state 11b; for a
- *          field of 1, 2 or 4 bytes a top byte 0xFF)
- *   ERR    error indicator (2-bit 10b; top byte 0xFE)
- *   OOR    outside the signal's DBC [min|max], or a J1939 parameter-specific
- *          or reserved value (top byte 0xFB to 0xFD); text lines add the raw
- *          value: OOR(raw 64256)
- *   SHORT  the frame is too short to hold the signal
- * J1939 ranges apply to a signal of 2, 8, 16 or 32 bits that is not a
- * multiplexer and whose all-ones raw value lies outside its [min|max] (for
- * can_dbc/pfe.dbc this gives the same signals as firmware/pfe_codec.c's
- * table). A signal whose [min|max] is [0|0] has no range.
- *
- * Text output (default), one line per frame:
- *   TIME IFACE ID MESSAGE SIGNAL=VALUE [UNIT] ...
- *   1700000000.100000 vcan0 18FEF100 CCVS1 WheelBasedVehicleSpeed=90 km/h
- * with a value's VAL_ description in parentheses, "remote request" for a
- * remote frame, "ERRORFRAME" and the data for an error frame, and "?" and
- * the data for a frame no message matches. TIME is seconds with 6 decimals
- * in the log's time base (canlog.h). Multiplexed messages show the
- * multiplexer and the signals its value selects.
- *
- * CSV (--csv): a header "time_s,iface,id,message" and one column per signal
- * of every message kept, named MESSAGE.SIGNAL[UNIT]; then one row per
- * decoded data frame, with the cells of its message's signals filled (those
- * a multiplexer does not select left empty) and all others empty. Frames no
- * message matches, remote and error frames are not in the CSV.
- *
- * A summary on standard error: frames read, decoded, not matched, parse
- * errors. Exit status: 0; 1 unreadable DBC or log, a DBC without a message
- * (an empty file: nothing to decode with), or a bad line (without
- * --skip-errors: decoding stops there); 3 usage error.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -64,6 +20,71 @@
 
 #include "sim_host/canlog.h"
 #include "sim_host/dbc.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: pfe_decode [--dbc FILE] [--csv] [--message NAME]...\n"
+    "                  [--format auto|log|printed|printed-delta|asc] [--skip-errors] [LOG | -]\n"
+    "\n"
+    "Decodes a CAN log through the DBC: one line, or one CSV row, per frame.\n"
+    "\n"
+    "LOG: a candump log, candump's printed output or a Vector ASC file, detected\n"
+    "from its first lines unless --format says which; default, or \"-\", standard\n"
+    "input.\n"
+    "\n"
+    "Options:\n"
+    "  --dbc FILE      the DBC (default can_dbc/pfe.dbc, else the one next to\n"
+    "                  this program's build folder)\n"
+    "  --csv           CSV instead of text (below)\n"
+    "  --message NAME  only this message (repeatable)\n"
+    "  --format F      auto (default), log, printed, printed-delta, asc\n"
+    "  --skip-errors   skip bad lines and count them (default: stop at the first)\n"
+    "  -h, --help      this help\n"
+    "\n"
+    "Matching: a 29-bit frame matches a 29-bit DBC message of the same J1939 PGN,\n"
+    "priority and source address masked, and for a PDU1 PGN (PF < 240) the\n"
+    "destination too; an 11-bit frame matches an 11-bit message of the same id.\n"
+    "\n"
+    "Values: raw * factor + offset, computed exactly from the factor and offset\n"
+    "as written in the DBC and printed with as many decimals as they need. Shown\n"
+    "instead of a number:\n"
+    "  NA     not available (J1939-71: all ones; a 2-bit state 11b; a field of 1,\n"
+    "         2 or 4 bytes whose top byte is 0xFF)\n"
+    "  ERR    error indicator (2-bit 10b; top byte 0xFE)\n"
+    "  OOR    outside the signal's DBC [min|max], or a J1939 parameter-specific or\n"
+    "         reserved value (top byte 0xFB to 0xFD); text lines add the raw value:\n"
+    "         OOR(raw 64256)\n"
+    "  SHORT  the frame is too short to hold the signal\n"
+    "J1939 ranges apply to a signal of 2, 8, 16 or 32 bits that is not a\n"
+    "multiplexer and whose all-ones raw value lies outside its [min|max]. A\n"
+    "signal whose [min|max] is [0|0] has no range.\n"
+    "\n"
+    "Text output (default), one line per frame:\n"
+    "  TIME IFACE ID MESSAGE SIGNAL=VALUE [UNIT] ...\n"
+    "  1700000000.100000 vcan0 18FEF100 CCVS1 WheelBasedVehicleSpeed=90 km/h\n"
+    "with a value's VAL_ description in parentheses, \"remote request\" for a\n"
+    "remote frame, \"ERRORFRAME\" and the data for an error frame, and \"?\" and the\n"
+    "data for a frame no message matches. TIME is seconds with 6 decimals in the\n"
+    "log's time base. Multiplexed messages show the multiplexer and the signals\n"
+    "its value selects.\n"
+    "\n"
+    "CSV (--csv): a header \"time_s,iface,id,message\" and one column per signal of\n"
+    "every message kept, named MESSAGE.SIGNAL[UNIT]; then one row per decoded\n"
+    "data frame, with the cells of its message's signals filled (those a\n"
+    "multiplexer does not select left empty). Frames no message matches, remote\n"
+    "and error frames are not in the CSV.\n"
+    "\n"
+    "A summary on standard error: frames read, decoded, not matched, parse\n"
+    "errors.\n"
+    "\n"
+    "Exit status: 0; 1 unreadable DBC or log, a DBC without a message (an empty\n"
+    "file: nothing to decode with), or a bad line (without --skip-errors:\n"
+    "decoding stops there); 3 usage error.\n"
+    "\n"
+    "Examples:\n"
+    "  pfe_decode drive.log                        # time iface id message signal=value unit ...\n"
+    "  pfe_decode --csv --message CCVS1 drive.log  # one row per frame, one column per signal\n";
 
 #define EXIT_INPUT 1
 #define EXIT_USAGE 3
@@ -494,9 +515,12 @@ static void decode_csv(decoder_t *d, const msg_info_t *mi, const canlog_frame_t 
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: pfe_decode [--dbc FILE] [--csv] [--message NAME]... "
-               "[--format auto|log|printed|printed-delta|asc] [--skip-errors] [LOG | -]\n"
-               "Decodes a CAN log through the DBC; see the header of sim_host/pfe_decode.c.\n");
+    /* --help: the whole manual; a usage error: its synopsis. */
+    if (f == stdout) {
+        cli_help(k_manual);
+    } else {
+        cli_usage(f, k_manual, "pfe_decode");
+    }
 }
 
 /* can_dbc/pfe.dbc here, else next to the build folder of this program

@@ -1,49 +1,10 @@
 /*
- * pfe_record - record CAN frames from SocketCAN interfaces to a candump log.
+ * pfe_record - record CAN frames from SocketCAN interfaces to a candump log,
+ * line for line as can-utils' candump -L writes it (lib.c's sprint_canframe,
+ * candump.c's log line). It only listens.
  *
- *   pfe_record [-o FILE] [-n COUNT] [--ns] [--rcvbuf BYTES] IF [IF ...]
- *
- * Every frame received on each interface IF (`any`: every CAN interface) is
- * written as one line of candump's log format, as can-utils' candump -L
- * prints it (lib.c's sprint_canframe, candump.c's log line):
- *
- *     (1700000000.123456) vcan0 18FEF100#FF005AFFFFFFFFFF
- *
- *   - the kernel's receive timestamp (SO_TIMESTAMPNS), microseconds
- *     truncated from nanoseconds as the kernel does for candump's
- *     SO_TIMESTAMP, seconds padded to 10 digits; --ns writes 9 digits;
- *   - the interface name right-aligned to the longest name on the command
- *     line (as candump; `any` counts as 3);
- *   - 3 hex digits for an 11-bit id, 8 for a 29-bit one; error frames
- *     (received: CAN_RAW_ERR_FILTER takes every error class, as candump
- *     does with the filter 'IF,0:0,#FFFFFFFF') with the error flag in the 8
- *     digits; `R` and a DLC for a remote frame; `##` and the flags nibble,
- *     as received, for CAN FD (CAN_RAW_FD_FRAMES is on; Linux 6.1 already
- *     sets CANFD_FDF, 4, in it); `_L` after 8 data bytes when the frame
- *     carries a raw DLC of 9 to 15.
- * Once every interface is open it says "pfe_record: recording IF... to FILE"
- * on standard error (a script can wait for that line before it sends).
- * The output goes to FILE (default standard output), fully buffered; the
- * recorder stops after COUNT frames (default: never), or on SIGINT or
- * SIGTERM, and then flushes and closes FILE. On standard error at the end:
- * frames recorded, and frames the kernel dropped because this recorder's
- * receive queue was full (SO_RXQ_OVFL, which comes with the next frame
- * queued, and at the end the socket's count, SO_MEMINFO), per interface; a
- * drop is also reported on standard error when it is noticed. Each socket
- * asks for a receive buffer of --rcvbuf BYTES (4096 .. 268435456, default
- * RCVBUF_BYTES, 8 MiB: SO_RCVBUFFORCE as root, else SO_RCVBUF up to the
- * system's rmem_max), room for about 10,000 frames: a full 1 Mbit/s bus for
- * a second that the recorder does not run; it says on standard error when
- * it got less. Unlike
- * candump, no DROPCOUNT lines go into the log, which stays a plain list of
- * frames.
- *
- * It only listens: no socket it opens is ever written to, so it needs no
- * guard against sending on a real bus, and it may record one.
- *
- * Exit status: 0 after a clean stop; 1 on a runtime failure (an interface
- * going away, a write error); 2 on bad arguments or an interface that cannot
- * be opened.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #define _GNU_SOURCE /* struct ifreq, SO_RXQ_OVFL */
 #include <errno.h>
@@ -65,6 +26,53 @@
 #include <linux/can.h>
 #include <linux/can/raw.h>
 #include <linux/sock_diag.h>
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: pfe_record [-o FILE] [-n COUNT] [--ns] [--rcvbuf BYTES] IF [IF ...]\n"
+    "\n"
+    "Records CAN frames from SocketCAN interfaces to a candump log. It only\n"
+    "listens: no socket it opens is ever written to, so it may record a real bus.\n"
+    "\n"
+    "  IF             an interface to record; \"any\": every CAN interface\n"
+    "  -o FILE        the log (default standard output), fully buffered\n"
+    "  -n COUNT       stop after COUNT frames (default: never)\n"
+    "  --ns           timestamps with 9 digits (nanoseconds) instead of 6\n"
+    "  --rcvbuf BYTES each socket's receive buffer, 4096 .. 268435456 (default\n"
+    "                 8 MiB: SO_RCVBUFFORCE as root, else SO_RCVBUF up to the\n"
+    "                 system's rmem_max; it says when it got less), room for\n"
+    "                 about 10,000 frames\n"
+    "  -h, --help     this help\n"
+    "\n"
+    "Every frame received is written as one line of candump's log format, as\n"
+    "can-utils' candump -L prints it:\n"
+    "\n"
+    "    (1700000000.123456) vcan0 18FEF100#FF005AFFFFFFFFFF\n"
+    "\n"
+    "  - the kernel's receive timestamp, microseconds truncated from nanoseconds\n"
+    "    as the kernel does for candump, seconds padded to 10 digits;\n"
+    "  - the interface name right-aligned to the longest name on the command line\n"
+    "    (as candump; \"any\" counts as 3);\n"
+    "  - 3 hex digits for an 11-bit id, 8 for a 29-bit one; error frames (every\n"
+    "    error class) with the error flag in the 8 digits; R and a DLC for a\n"
+    "    remote frame; ## and the flags nibble for CAN FD; _L after 8 data bytes\n"
+    "    when the frame carries a raw DLC of 9 to 15.\n"
+    "Once every interface is open it says \"pfe_record: recording IF... to FILE\"\n"
+    "on standard error (a script can wait for that line before it sends). It\n"
+    "stops after COUNT frames, or on SIGINT or SIGTERM, and then flushes and\n"
+    "closes FILE. On standard error at the end: frames recorded, and frames the\n"
+    "kernel dropped because the recorder's receive queue was full, per\n"
+    "interface; a drop is also reported when it is noticed. Unlike candump, no\n"
+    "DROPCOUNT lines go into the log, which stays a plain list of frames.\n"
+    "\n"
+    "Exit status: 0 after a clean stop; 1 on a runtime failure (an interface\n"
+    "going away, a write error); 2 on bad arguments or an interface that cannot\n"
+    "be opened.\n"
+    "\n"
+    "Examples:\n"
+    "  pfe_record -o capture.log vcan0        # until Ctrl-C\n"
+    "  pfe_record -n 1000 --ns can0 can1      # 1000 frames of two buses, to standard output\n";
 
 #ifndef SO_RXQ_OVFL
 #define SO_RXQ_OVFL 40
@@ -108,8 +116,12 @@ typedef struct {
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: pfe_record [-o FILE] [-n COUNT] [--ns] [--rcvbuf BYTES] IF [IF ...]   (IF 'any': "
-               "every CAN interface)\n");
+    /* --help: the whole manual; a usage error: its synopsis. */
+    if (f == stdout) {
+        cli_help(k_manual);
+    } else {
+        cli_usage(f, k_manual, "pfe_record");
+    }
 }
 
 static int parse_args(int argc, char **argv, options_t *o)

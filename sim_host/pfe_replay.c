@@ -29,6 +29,7 @@
 #include "hal/socketcan/hal_socketcan.h"
 #include "sim_host/canlog.h"
 #include "sim_host/lateness.h"
+#include "lib/cli_help.h"
 
 #define EXIT_INPUT 1
 #define EXIT_REFUSED 2
@@ -227,13 +228,7 @@ static const char k_manual[] =
 
 static void usage(FILE *f)
 {
-    fprintf(f, "%.*s", (int)(strstr(k_manual, "\n\n") - k_manual + 1), k_manual);
-    fprintf(f, "pfe_replay --help: the manual\n");
-}
-
-static void help(void)
-{
-    fputs(k_manual, stdout);
+    cli_usage(f, k_manual, "pfe_replay");
 }
 
 /* A decimal number (digits, optional fraction) >= 0 into *out. */
@@ -844,7 +839,7 @@ static int parse_args(replay_t *rp, int argc, char **argv)
         uint64_t u = 0U;
         bool used_value = true;
         if ((strcmp(a, "-h") == 0) || (strcmp(a, "--help") == 0)) {
-            help();
+            cli_help(k_manual);
             return 1;
         } else if (strcmp(a, "-t") == 0) {
             rp->ignore_ts = true;

@@ -1,61 +1,10 @@
 /*
- * platoon_compare - the node model against the object model (thesis 5.2).
+ * platoon_compare - the node model against the object model (thesis 5.2):
+ * the analogues of thesis tables 5.1 to 5.5, and where the two differ, and why
+ * (both in the manual).
  *
- *   platoon_compare --road FILE.csv [--road FILE.csv ...] [--vehicles N]
- *                   [--set-speed-kmh V] [--time-gap-s H] [--standstill-m D0]
- *                   [--length-m L] [--margin-kmh M]
- *                   [--step-s DT] [--no-drag-reduction] [--repeat K]
- *   platoon_compare --only node|object --road FILE.csv [options]
- *   platoon_compare --bench --road FILE.csv [options]
- *
- * Runs both models (node_model.h: same time step in both) on each road and
- * prints the analogues of thesis tables 5.1 (fuel), 5.2 (relative
- * difference), 5.3 (mean, min and max speed), 5.4 (the two fuel models fed
- * the same speeds: the node model's mean speed, node_fuel_fed) and 5.5
- * (host time of each, median of K runs, default 9, and the ratio), each
- * beside the thesis's figures for its road of that kind (flat.csv,
- * uphill.csv, hilly.csv: its flat, uphill and real road), with the work of each model
- * counted in truck-steps (one force, controller and fuel evaluation of one
- * truck, or of the point mass, over one step). A column gives the object
- * model as the firmware's reference steps it (ref_sim, 10 m of distance per
- * step) to show that the time step does not change the result (nan where
- * it cannot run: more than 32 trucks, or a stall below 1 m/s).
- *
- * --only runs one model once and prints one line: for instruction counts
- * under callgrind (`--toggle-collect=node_sim_run` or `object_sim_run`).
- * --bench prints the host times of the first road as `make bench` lines:
- * "bench: object_<km>km_host_ms <median> ms" and the node model's.
- *
- * The node model's trucks are point masses by default, as in the thesis
- * (5.2: "N different point-mass objects"), the gap between them d = d0 +
- * h v. --length-m gives them a length L, so that front to front they are
- * L + d apart.
- *
- * Where the models differ, and why (found with --no-drag-reduction,
- * --length-m and --margin-kmh):
- * - On a climb the node model's leader, which has the least drag
- *   reduction, sets the platoon's speed. The object model follows it
- *   through its formation drag (pfe_platoon.h); without it, it climbs
- *   1.7 km/h faster.
- * - With trucks of a length, the time between two trucks passing one
- *   point is (L + d0) / v + h: it shrinks as the speed rises. Trucks that
- *   drive the same speed profile over the road (each meets the same
- *   grades) fall behind their desired gap whenever the platoon speeds up
- *   after a climb, and the followers spend fuel closing it that they brake
- *   away on the next descent: on the hilly road 16.5 m trucks burn 2.8 %
- *   more than the object model, at the same mean speed. Point masses with
- *   d0 = 0 keep the time between them at h at every speed and need no such
- *   catching up.
- * - Even with point masses the followers' controller leaves a trace on a
- *   hilly road: a follower's PI lags its predecessor, so over a crest it
- *   keeps pulling for a moment after the truck ahead has begun to coast,
- *   and brakes the surplus away. On the hilly road this moves the result
- *   by about 1 %: +0.09 % with the defaults, -0.17 % to +0.31 % with a
- *   followers' speed margin of 0 to 1 km/h, -1.38 % without drag
- *   reduction (where the formation drag does not offset it).
- *
- * Exit status: 0, 1 when a model stalls on a road, 2 on bad arguments or
- * input.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -69,27 +18,95 @@
 #include "cli_args.h"
 #include "node_model.h"
 #include "ref_model.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: platoon_compare --road FILE.csv [--road FILE.csv ...] [--vehicles N]\n"
+    "                       [--set-speed-kmh V] [--time-gap-s H] [--standstill-m D0]\n"
+    "                       [--length-m L] [--margin-kmh M]\n"
+    "                       [--step-s DT] [--no-drag-reduction] [--repeat K]\n"
+    "       platoon_compare --only node|object --road FILE.csv [options]\n"
+    "       platoon_compare --bench --road FILE.csv [options]\n"
+    "\n"
+    "The node model against the object model (thesis 5.2).\n"
+    "\n"
+    "  --vehicles N         platoon size, 1 to 64 (default 5)\n"
+    "  --set-speed-kmh V    set speed (default 90)\n"
+    "  --time-gap-s H       time gap of the followers (default 0.4)\n"
+    "  --standstill-m D0    gap at standstill: gap = D0 + H v (default 0: 10 m at 90 km/h)\n"
+    "  --length-m L         truck length (default 0: point masses, as in the thesis)\n"
+    "  --margin-kmh M       followers' own cruise control at set speed + M (default 2)\n"
+    "  --step-s DT          time step of both models, 0.001 to 1 (default 0.1)\n"
+    "  --no-drag-reduction  no slipstream in either model\n"
+    "  --repeat K           host-time runs per model, median printed (default 9)\n"
+    "  --only MODEL         run one model once (node or object)\n"
+    "  --bench              host times of the first road as bench: lines\n"
+    "  -h, --help           this help\n"
+    "\n"
+    "Runs both models (same time step in both) on each road and\n"
+    "prints the analogues of thesis tables 5.1 (fuel), 5.2 (relative\n"
+    "difference), 5.3 (mean, min and max speed), 5.4 (the two fuel models fed\n"
+    "the same speeds: the node model's mean speed, node_fuel_fed) and 5.5\n"
+    "(host time of each, median of K runs, default 9, and the ratio), each\n"
+    "beside the thesis's figures for its road of that kind (flat.csv,\n"
+    "uphill.csv, hilly.csv: its flat, uphill and real road), with the work of each model\n"
+    "counted in truck-steps (one force, controller and fuel evaluation of one\n"
+    "truck, or of the point mass, over one step). A column gives the object\n"
+    "model as the firmware's reference steps it (10 m of distance per step) to show that the time step does not change the result (nan where\n"
+    "it cannot run: more than 32 trucks, or a stall below 1 m/s).\n"
+    "\n"
+    "--only runs one model once and prints one line: for instruction counts\n"
+    "under callgrind (`--toggle-collect=node_sim_run` or `object_sim_run`).\n"
+    "--bench prints the host times of the first road as `make bench` lines:\n"
+    "\"bench: object_<km>km_host_ms <median> ms\" and the node model's.\n"
+    "\n"
+    "The node model's trucks are point masses by default, as in the thesis\n"
+    "(5.2: \"N different point-mass objects\"), the gap between them d = d0 +\n"
+    "h v. --length-m gives them a length L, so that front to front they are\n"
+    "L + d apart.\n"
+    "\n"
+    "Where the models differ, and why (found with --no-drag-reduction,\n"
+    "--length-m and --margin-kmh):\n"
+    "- On a climb the node model's leader, which has the least drag\n"
+    "  reduction, sets the platoon's speed. The object model follows it\n"
+    "  through its formation drag (docs/model.md); without it, it climbs\n"
+    "  1.7 km/h faster.\n"
+    "- With trucks of a length, the time between two trucks passing one\n"
+    "  point is (L + d0) / v + h: it shrinks as the speed rises. Trucks that\n"
+    "  drive the same speed profile over the road (each meets the same\n"
+    "  grades) fall behind their desired gap whenever the platoon speeds up\n"
+    "  after a climb, and the followers spend fuel closing it that they brake\n"
+    "  away on the next descent: on the hilly road 16.5 m trucks burn 2.8 %\n"
+    "  more than the object model, at the same mean speed. Point masses with\n"
+    "  d0 = 0 keep the time between them at h at every speed and need no such\n"
+    "  catching up.\n"
+    "- Even with point masses the followers' controller leaves a trace on a\n"
+    "  hilly road: a follower's PI lags its predecessor, so over a crest it\n"
+    "  keeps pulling for a moment after the truck ahead has begun to coast,\n"
+    "  and brakes the surplus away. On the hilly road this moves the result\n"
+    "  by about 1 %: +0.09 % with the defaults, -0.17 % to +0.31 % with a\n"
+    "  followers' speed margin of 0 to 1 km/h, -1.38 % without drag\n"
+    "  reduction (where the formation drag does not offset it).\n"
+    "\n"
+    "Exit status: 0, 1 when a model stalls on a road, 2 on bad arguments or\n"
+    "input.\n"
+    "\n"
+    "Examples:\n"
+    "  platoon_compare --road sim_host/data/roads/flat.csv --road sim_host/data/roads/uphill.csv\n"
+    "  platoon_compare --road sim_host/data/roads/hilly.csv --length-m 16.5\n";
 
 #define MAX_ROADS 8
 #define MAX_REPEAT 101
 
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "usage: platoon_compare --road FILE.csv [--road FILE.csv ...] [options]\n"
-            "       platoon_compare --only node|object --road FILE.csv [options]\n"
-            "  --vehicles N         platoon size, 1 to %u (default 5)\n"
-            "  --set-speed-kmh V    set speed (default 90)\n"
-            "  --time-gap-s H       time gap of the followers (default 0.4)\n"
-            "  --standstill-m D0    gap at standstill: gap = D0 + H v (default 0: 10 m at 90 km/h)\n"
-            "  --length-m L         truck length (default 0: point masses, as in the thesis)\n"
-            "  --margin-kmh M       followers' own cruise control at set speed + M (default 2)\n"
-            "  --step-s DT          time step of both models, 0.001 to 1 (default 0.1)\n"
-            "  --no-drag-reduction  no slipstream in either model\n"
-            "  --repeat K           host-time runs per model, median printed (default 9)\n"
-            "  --only MODEL         run one model once (node or object)\n"
-            "  --bench              host times of the first road as bench: lines\n",
-            NODE_MAX_VEHICLES);
+    /* --help: the whole manual; a usage error: its synopsis. */
+    if (f == stdout) {
+        cli_help(k_manual);
+    } else {
+        cli_usage(f, k_manual, "platoon_compare");
+    }
 }
 
 static double now_ms(void)

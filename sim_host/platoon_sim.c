@@ -1,14 +1,9 @@
 /*
- * platoon_sim - drive a platoon over a road profile with the firmware's
- * fixed-point object model and the double-precision reference, and print
- * both summaries side by side.
+ * platoon_sim - a platoon over a road profile, the firmware's fixed-point
+ * object model beside the double-precision reference.
  *
- *   platoon_sim --road FILE.csv [--vehicles N] [--set-speed-kmh V]
- *               [--gap-m D | --time-gap-s T] [--step-m S]
- *               [--no-drag-reduction] [--trace OUT.csv]
- *
- * Exit status: 0 on success, 1 on a simulation failure (stall), 2 on bad
- * arguments or input.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <errno.h>
 #include <math.h>
@@ -21,21 +16,42 @@
 #include "../firmware/pfe_platoon.h"
 #include "road_csv.h"
 #include "sim_compare.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: platoon_sim --road FILE.csv [--vehicles N] [--set-speed-kmh V]\n"
+    "                   [--gap-m D | --time-gap-s T] [--step-m S]\n"
+    "                   [--no-drag-reduction] [--trace OUT.csv]\n"
+    "\n"
+    "Drives a platoon over a road profile with the firmware's fixed-point object\n"
+    "model and the double-precision reference, and prints both summaries side by\n"
+    "side.\n"
+    "\n"
+    "  --road FILE.csv     the road profile\n"
+    "  --vehicles N        platoon size, 1 to 32 (default 5)\n"
+    "  --set-speed-kmh V   cruise set speed (default 90)\n"
+    "  --gap-m D           gap between trucks in m\n"
+    "  --time-gap-s T      gap as time at set speed (default 0.4 s)\n"
+    "  --step-m S          distance step, 0.1 to 10 m (default 10)\n"
+    "  --no-drag-reduction trucks without slipstream (phi = 0)\n"
+    "  --trace OUT.csv     write one row per step for both models\n"
+    "  -h, --help          this help\n"
+    "\n"
+    "Exit status: 0 on success, 1 on a simulation failure (stall), 2 on bad\n"
+    "arguments or input.\n"
+    "\n"
+    "Example:\n"
+    "  platoon_sim --road sim_host/data/roads/hilly.csv --vehicles 5 --trace hilly.csv\n";
 
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "usage: platoon_sim --road FILE.csv [--vehicles N] [--set-speed-kmh V]\n"
-            "                   [--gap-m D | --time-gap-s T] [--step-m S]\n"
-            "                   [--no-drag-reduction] [--trace OUT.csv]\n"
-            "  --vehicles N        platoon size, 1 to %u (default 5)\n"
-            "  --set-speed-kmh V   cruise set speed (default 90)\n"
-            "  --gap-m D           gap between trucks in m\n"
-            "  --time-gap-s T      gap as time at set speed (default 0.4 s)\n"
-            "  --step-m S          distance step, 0.1 to 10 m (default 10)\n"
-            "  --no-drag-reduction trucks without slipstream (phi = 0)\n"
-            "  --trace OUT.csv     write one row per step for both models\n",
-            PFE_MAX_VEHICLES);
+    /* --help: the whole manual; a usage error: its synopsis. */
+    if (f == stdout) {
+        cli_help(k_manual);
+    } else {
+        cli_usage(f, k_manual, "platoon_sim");
+    }
 }
 
 int main(int argc, char **argv)

@@ -1,19 +1,9 @@
 /*
- * road2c: turns a road profile CSV into C source for the firmware, which has
- * no file system and embeds its roads as const tables.
+ * road2c - turns a road profile CSV into C source for the firmware, with
+ * the conversion of road_profile_to_ppm().
  *
- *     road2c NAME CSV OUT.c
- *
- * OUT.c defines, for a profile of N samples:
- *
- *     const int32_t  road_NAME_grade_ppm[N];    grade, 1 % = 10 000 ppm, positive uphill
- *     const uint32_t road_NAME_n_samples;       N
- *     const uint32_t road_NAME_spacing_mm;      distance between samples
- *
- * with the conversion of road_profile_to_ppm(). NAME must be a C identifier.
- * The file is written under a temporary name and renamed, so a failed run
- * leaves no partial file. Exit status: 0 done, 1 bad CSV or write failure
- * (the loader's message on stderr), 2 usage error.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include "road_csv.h"
 
@@ -22,6 +12,28 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: road2c NAME CSV OUT.c\n"
+    "\n"
+    "Turns a road profile CSV into C source for the firmware, which has no file\n"
+    "system and embeds its roads as const tables. OUT.c defines, for a profile of\n"
+    "N samples:\n"
+    "\n"
+    "    const int32_t  road_NAME_grade_ppm[N];    grade, 1 % = 10 000 ppm, positive uphill\n"
+    "    const uint32_t road_NAME_n_samples;       N\n"
+    "    const uint32_t road_NAME_spacing_mm;      distance between samples\n"
+    "\n"
+    "NAME must be a C identifier. The file is written under a temporary name and\n"
+    "renamed, so a failed run leaves no partial file.\n"
+    "\n"
+    "Exit status: 0 done, 1 bad CSV or write failure (the loader's message on\n"
+    "standard error), 2 usage error.\n"
+    "\n"
+    "Example:\n"
+    "  road2c hilly sim_host/data/roads/hilly.csv build/gen/road_hilly.c\n";
 
 #define NAME_MAX_LEN 64u
 #define VALUES_PER_LINE 10u
@@ -88,10 +100,12 @@ static int write_source(FILE *out, const char *name, const char *csv_path, size_
 
 int main(int argc, char **argv)
 {
+    if (cli_help_asked(argc, argv)) {
+        cli_help(k_manual);
+        return 0;
+    }
     if (argc != 4) {
-        fprintf(stderr, "usage: road2c NAME CSV OUT.c\n"
-                        "  writes road_NAME_grade_ppm[], road_NAME_n_samples and\n"
-                        "  road_NAME_spacing_mm for the road profile in CSV\n");
+        cli_usage(stderr, k_manual, "road2c");
         return 2;
     }
     const char *name = argv[1];

@@ -1,32 +1,45 @@
 /*
- * roadgen: writes the thesis's three test roads as road profile CSV
- * (format in road_csv.h and roads/README.md).
+ * roadgen - writes the thesis's three test roads as road profile CSV (format
+ * in road_csv.h). hilly is built the way a motorway's vertical alignment is
+ * designed: constant-grade tangents joined by parabolic vertical curves (rate
+ * 1/R for a curve of radius R), from a fixed-seed integer generator, all in
+ * integer arithmetic, then scaled to span exactly -3 % to +4 % and checked
+ * (hilly_check()).
  *
- *     roadgen NAME [--out FILE]      NAME: flat | uphill | hilly
- *
- * All three are 1000 samples at 12 m (0 to 11988 m), as in thesis section
- * 6.1. flat is 0 % and uphill a constant 2 % upgrade, as the thesis defines
- * them. The thesis's third road is a measured E4 profile between -3 % and
- * +4 % whose data is not public; hilly is a synthetic stand-in with the same
- * grade range.
- *
- * hilly is built the way a motorway's vertical alignment is designed:
- * constant-grade tangents joined by parabolic vertical curves, over which the
- * grade changes linearly with distance (rate 1/R for a curve of radius R).
- * Tangent lengths, grades and curve radii come from a fixed-seed integer
- * generator, and the whole computation is integer arithmetic, so the output
- * is byte-identical on every machine. The grades are then scaled linearly so
- * that they span exactly -3.000 % to +4.000 %, and checked against the
- * properties the road is meant to have (see hilly_check()).
- *
- * Without --out the CSV goes to stdout. With --out the file is written under
- * a temporary name and renamed, so a failed run leaves no partial file.
- * Exit status: 0 done, 1 write failure or failed check, 2 usage error.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: roadgen NAME [--out FILE]\n"
+    "\n"
+    "Writes one of the thesis's three test roads as road profile CSV\n"
+    "(distance_m,grade_percent).\n"
+    "\n"
+    "  NAME        flat (0 %), uphill (a constant 2 % upgrade) or hilly\n"
+    "              (synthetic, -3 % to +4 %): 1000 samples at 12 m (0 to 11988 m),\n"
+    "              as in thesis section 6.1\n"
+    "  --out FILE  write to FILE instead of standard output (under a temporary\n"
+    "              name, renamed at the end: a failed run leaves no partial file)\n"
+    "  -h, --help  this help\n"
+    "\n"
+    "The thesis's third road is a measured E4 profile between -3 % and +4 % whose\n"
+    "data is not public; hilly is a synthetic stand-in with the same grade range,\n"
+    "drawn the way a motorway's vertical alignment is designed (constant-grade\n"
+    "stretches joined by vertical curves) by a fixed-seed integer generator, so\n"
+    "the output is byte-identical on every machine; sim_host/data/roads/README.md\n"
+    "describes it.\n"
+    "\n"
+    "Exit status: 0 done, 1 write failure or failed check, 2 usage error.\n"
+    "\n"
+    "Example:\n"
+    "  roadgen hilly --out hilly.csv\n";
 
 #define N_SAMPLES 1000
 #define SPACING_M 12
@@ -232,11 +245,12 @@ static int write_road(FILE *out, const road_def_t *road, const int32_t mpct[N_SA
 
 static void usage(FILE *to)
 {
-    fprintf(to,
-            "usage: roadgen NAME [--out FILE]\n"
-            "  NAME  flat (0 %%), uphill (constant 2 %%) or hilly (synthetic, -3 %% to +4 %%):\n"
-            "        1000 samples at 12 m, written as distance_m,grade_percent CSV\n"
-            "  --out FILE  write to FILE instead of stdout\n");
+    /* --help: the whole manual; a usage error: its synopsis. */
+    if (to == stdout) {
+        cli_help(k_manual);
+    } else {
+        cli_usage(to, k_manual, "roadgen");
+    }
 }
 
 int main(int argc, char **argv)

@@ -1,21 +1,9 @@
 /*
  * roadimport - a road profile (road_csv.h) from a GPX track with elevations
- * or a distance/elevation CSV (sim_host/road_import.h).
+ * or a distance/elevation CSV (the rules: sim_host/road_import.h).
  *
- *   roadimport [--spacing-m S] [--smooth-m W] [--elevation-out FILE.csv] INPUT --out ROAD.csv
- *
- * INPUT is GPX when its first character is '<', else a CSV of
- * "distance_m,elevation_m". ROAD.csv gets the grade every S metres
- * (default 10) as the least-squares slope of the elevations within W / 2 of
- * each sample's middle (default 400 m), with comment lines naming the
- * input, its points, the duplicates dropped and the smoothing. With
- * --elevation-out, FILE.csv gets "distance_m,elevation_m,road_elevation_m"
- * at each sample's start: the input's elevation (linear between points) and
- * the elevation the road's grades add up to, from the first sample's
- * least-squares line at 0 m.
- *
- * Exit status: 0, 2 on bad arguments or input (the message names the file,
- * the line and the reason), nothing written then.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <errno.h>
 #include <math.h>
@@ -25,14 +13,48 @@
 
 #include "cli_args.h"
 #include "road_import.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: roadimport [--spacing-m S] [--smooth-m W] [--elevation-out FILE.csv] INPUT --out ROAD.csv\n"
+    "\n"
+    "A road profile from a GPX track with elevations or a distance/elevation CSV,\n"
+    "as a route planner has them.\n"
+    "\n"
+    "  INPUT            GPX 1.1 track (<trkpt> with <ele>) or CSV distance_m,elevation_m\n"
+    "  --spacing-m S    grade sample spacing, 1 to 250 m (default 10)\n"
+    "  --smooth-m W     least-squares window for the grade, S to 20000 m (default 400)\n"
+    "  --elevation-out  also write distance_m,elevation_m,road_elevation_m per sample\n"
+    "  --out ROAD.csv   the road profile\n"
+    "  -h, --help       this help\n"
+    "\n"
+    "INPUT is GPX when its first character is '<', else a CSV of\n"
+    "\"distance_m,elevation_m\". ROAD.csv gets the grade every S metres (default\n"
+    "10) as the least-squares slope of the elevations within W / 2 of each\n"
+    "sample's middle (default 400 m): GNSS or DEM elevation noise would otherwise\n"
+    "become grades of +-10 % and more. It carries comment lines naming the input,\n"
+    "its points, the duplicates dropped and the smoothing. With --elevation-out,\n"
+    "FILE.csv gets \"distance_m,elevation_m,road_elevation_m\" at each sample's\n"
+    "start: the input's elevation (linear between points) and the elevation the\n"
+    "road's grades add up to, from the first sample's least-squares line at 0 m.\n"
+    "Duplicated points are dropped and counted; a track without elevations, of\n"
+    "one point, or with a non-numeric field is refused with its line.\n"
+    "\n"
+    "Exit status: 0, 2 on bad arguments or input (the message names the file,\n"
+    "the line and the reason), nothing written then.\n"
+    "\n"
+    "Example:\n"
+    "  roadimport track.gpx --out road.csv --elevation-out elevation.csv\n";
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: roadimport [--spacing-m S] [--smooth-m W] [--elevation-out FILE.csv] INPUT --out ROAD.csv\n"
-               "  INPUT            GPX 1.1 track (<trkpt> with <ele>) or CSV distance_m,elevation_m\n"
-               "  --spacing-m S    grade sample spacing, 1 to 250 m (default 10)\n"
-               "  --smooth-m W     least-squares window for the grade, S to 20000 m (default 400)\n"
-               "  --elevation-out  also write distance_m,elevation_m,road_elevation_m per sample\n");
+    /* --help: the whole manual; a usage error: its synopsis. */
+    if (f == stdout) {
+        cli_help(k_manual);
+    } else {
+        cli_usage(f, k_manual, "roadimport");
+    }
 }
 
 static double elevation_at(const road_track_t *t, double x)

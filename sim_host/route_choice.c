@@ -1,32 +1,10 @@
 /*
  * route_choice - which route burns the least fuel, and whether that is
- * guaranteed (thesis 5.1 and the rule of its chapter 7).
+ * guaranteed (thesis 5.1 and the rule of its chapter 7; the bounds of
+ * fuel_bounds.h).
  *
- *   route_choice [--vehicles N | --truck MASS_KG:PMAX_KW:CWAF_M2:ETA ...]
- *                [--set-speed-kmh V] [--time-gap-s H] ROUTE.csv ROUTE.csv ...
- *
- * For each route (road CSV, road_csv.h) the object model predicts the
- * platoon's fuel and travel time, and fuel_bounds.h gives the lower and
- * upper bound. Routes are ranked by predicted fuel. The best one is called
- * "guaranteed best" only when every bound the claim relies on holds its
- * assumptions and the numbers agree: the best route's upper bound (thesis
- * 5.1: same speed at the start and the end, an upgrade that slows the
- * platoon) is below every other route's lower bound. The other routes'
- * lower bound is the thesis's where its assumptions hold, and the energy
- * bound (fuel_bounds.h) where they do not, which holds without them.
- * Otherwise the verdict is "best by estimate, not guaranteed" with the
- * reason: the route whose bounds overlap the best's, or the assumption the
- * best route's upper bound misses.
- *
- * --truck adds one truck (in platoon order, the first leads) with the
- * default calibration (pfe_calib.h) but this mass, wheel power, cw Af and
- * efficiency; without --truck the platoon is N default trucks (default 5).
- * A route on which the thesis's bounds' assumptions do not hold is marked
- * in the table, and its lower bound is the energy bound.
- *
- * Exit status: 0 guaranteed best, 3 best by estimate, not guaranteed, 1
- * when the platoon stalls on a route, 2 on bad arguments or input (the
- * message names the file, line and reason).
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <errno.h>
 #include <math.h>
@@ -37,22 +15,61 @@
 #include "cli_args.h"
 #include "fuel_bounds.h"
 #include "node_model.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: route_choice [--vehicles N | --truck MASS_KG:PMAX_KW:CWAF_M2:ETA ...]\n"
+    "                    [--set-speed-kmh V] [--time-gap-s H] ROUTE.csv ROUTE.csv ...\n"
+    "\n"
+    "Which route burns the least fuel, and whether that is guaranteed (thesis 5.1\n"
+    "and the rule of its chapter 7).\n"
+    "\n"
+    "  --vehicles N         N default trucks, 1 to 64 (default 5)\n"
+    "  --truck M:P:A:E      one truck: mass kg, wheel power kW, cw*Af m^2, efficiency\n"
+    "                       (repeat, lead truck first; replaces --vehicles)\n"
+    "  --set-speed-kmh V    set speed (default 90)\n"
+    "  --time-gap-s H       followers' time gap (default 0.4)\n"
+    "  ROUTE.csv            a route: at least 2 and at most 16\n"
+    "  -h, --help           this help\n"
+    "\n"
+    "For each route (a road CSV) the object model predicts the\n"
+    "platoon's fuel and travel time, and the fuel bounds give the lower and\n"
+    "upper bound. Routes are ranked by predicted fuel. The best one is called\n"
+    "\"guaranteed best\" only when every bound the claim relies on holds its\n"
+    "assumptions and the numbers agree: the best route's upper bound (thesis\n"
+    "5.1: same speed at the start and the end, an upgrade that slows the\n"
+    "platoon) is below every other route's lower bound. The other routes'\n"
+    "lower bound is the thesis's where its assumptions hold, and the energy\n"
+    "bound where they do not, which holds without them (docs/thesis.md).\n"
+    "Otherwise the verdict is \"best by estimate, not guaranteed\" with the\n"
+    "reason: the route whose bounds overlap the best's, or the assumption the\n"
+    "best route's upper bound misses.\n"
+    "\n"
+    "--truck adds one truck (in platoon order, the first leads) with the\n"
+    "default calibration (docs/model.md) but this mass, wheel power, cw Af and\n"
+    "efficiency; without --truck the platoon is N default trucks (default 5).\n"
+    "A route on which the thesis's bounds' assumptions do not hold is marked\n"
+    "in the table, and its lower bound is the energy bound.\n"
+    "\n"
+    "Exit status: 0 guaranteed best, 3 best by estimate, not guaranteed, 1 when\n"
+    "the platoon stalls on a route, 2 on bad arguments or input (the message\n"
+    "names the file, line and reason).\n"
+    "\n"
+    "Example:\n"
+    "  route_choice sim_host/data/routes/ridge.csv sim_host/data/routes/detour.csv\n";
 
 #define MAX_ROUTES 16
 #define EXIT_NOT_GUARANTEED 3
 
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "usage: route_choice [--vehicles N | --truck MASS_KG:PMAX_KW:CWAF_M2:ETA ...]\n"
-            "                    [--set-speed-kmh V] [--time-gap-s H] ROUTE.csv ROUTE.csv ...\n"
-            "  --vehicles N         N default trucks, 1 to %u (default 5)\n"
-            "  --truck M:P:A:E      one truck: mass kg, wheel power kW, cw*Af m^2, efficiency\n"
-            "                       (repeat, lead truck first; replaces --vehicles)\n"
-            "  --set-speed-kmh V    set speed (default 90)\n"
-            "  --time-gap-s H       followers' time gap (default 0.4)\n"
-            "  at least 2 and at most %d routes\n",
-            NODE_MAX_VEHICLES, MAX_ROUTES);
+    /* --help: the whole manual; a usage error: its synopsis. */
+    if (f == stdout) {
+        cli_help(k_manual);
+    } else {
+        cli_usage(f, k_manual, "route_choice");
+    }
 }
 
 /* "M:P:A:E" into a calibration; returns 0 or -1 with the reason in err. */

@@ -1,16 +1,9 @@
 /*
- * routegen - writes a route profile as road CSV (format in road_csv.h).
+ * routegen - writes a route profile as road CSV (format in road_csv.h): a
+ * bundled route or a seeded random one (route_gen.h).
  *
- *     routegen NAME [--out FILE]
- *
- * NAME is a bundled route (ridge, detour, rolling: sim_host/routes/) or
- * hilly:SEED, the random hilly route of the fuel-bound property test with
- * that seed (route_gen.h), so that any route the test names can be looked
- * at and run through the other tools.
- *
- * Without --out the CSV goes to stdout; with it, to a temporary name that is
- * renamed at the end, so a failed run leaves no partial file.
- * Exit status: 0 done, 1 write failure, 2 usage error.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -21,14 +14,41 @@
 #include <string.h>
 
 #include "route_gen.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: routegen NAME [--out FILE]\n"
+    "\n"
+    "Writes a route profile as road CSV.\n"
+    "\n"
+    "  NAME        a bundled route (the list at the end; sim_host/data/routes/),\n"
+    "              or hilly:SEED, the random hilly route\n"
+    "              of the fuel bounds' property test with that seed (SEED a\n"
+    "              decimal number below 2^64), so that any route the test names\n"
+    "              can be looked at and run through the other tools\n"
+    "  --out FILE  write to FILE instead of standard output (under a temporary\n"
+    "              name, renamed at the end: a failed run leaves no partial file)\n"
+    "  -h, --help  this help\n"
+    "\n"
+    "Exit status: 0 done, 1 write failure, 2 usage error.\n"
+    "\n"
+    "Example:\n"
+    "  routegen hilly:42 --out hilly42.csv\n";
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: routegen NAME [--out FILE]\n  NAME: ");
-    for (size_t k = 0U; k < route_named_count; k++) {
-        fprintf(f, "%s | ", route_named[k].name);
+    /* --help: the whole manual and the bundled routes; a usage error: its synopsis. */
+    if (f != stdout) {
+        cli_usage(f, k_manual, "routegen");
+        return;
     }
-    fprintf(f, "hilly:SEED (SEED a decimal number below 2^64)\n");
+    cli_help(k_manual);
+    fprintf(f, "\nbundled routes:");
+    for (size_t k = 0U; k < route_named_count; k++) {
+        fprintf(f, " %s", route_named[k].name);
+    }
+    fprintf(f, "\n");
 }
 
 int main(int argc, char **argv)

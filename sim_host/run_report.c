@@ -1,56 +1,10 @@
 /*
  * run_report - judge a module from a capture of its bus: summary, CSV, plot,
- * and with --expect a verdict.
+ * and with --expect a verdict. The reference is sim_host/bus_ref.h's; how the
+ * capture is read: sim_host/capture.h; docs/harness.md, "The judge".
  *
- *   run_report CAPTURE.log [--module-sa SA] [--warmup-s S] [--rate-floor-l-h F]
- *              [--vehicles N] [--position P] [--gap-m D]
- *              [--out PREFIX] [--no-plot] [--gnuplot PROG] [--title TEXT]
- *              [--expect FILE] [--junit FILE] [--calib FILE]
- *
- * --calib: the trucks' calibration (sim_host/truck_cal.h) the module ran
- * with, for the reference too (default: the default calibration).
- * CAPTURE is a candump log (candump -L, sim_host/pfe_record; format in
- * sim_host/capture.h) of one bus: the inputs (CCVS1, SSI, PFE_PlatoonConfig,
- * anything not from the module) and the module's answers (source address
- * SA, default 0x8C). The reference (sim_host/bus_ref.h: the double-precision
- * estimator handling the inputs as the module does) runs on the inputs;
- * --vehicles/--position/--gap-m give the platoon the module was started
- * with, used until a PFE_PlatoonConfig says otherwise (default 1, 0, 10 m).
- *
- * Compared:
- *   - every LFE1 fuel rate and PFE_PlatoonFuel rate from S seconds after
- *     the first input frame (default 5) to the last one, against the
- *     reference tick nearest to it among the last 6 (the module's tick
- *     phase is not in the capture); relative errors only where the
- *     reference is at least F L/h (default 5: below it LFE1's 0.05 L/h step
- *     alone is 1 %), absolute errors everywhere;
- *   - fuel used over the capture: the last HRLFC (own truck) and
- *     PFE_PlatoonFuel (platoon) total minus the first, against the
- *     reference's fuel used between the same two instants.
- *
- * Writes PREFIX.csv (one row per LFE1 frame from the first input to the
- * last: time_s, speed_kmh, grade_pct, module_rate_l_h, ref_rate_l_h,
- * module_total_l, ref_total_l; NA where there is no value), PREFIX.metrics
- * (every quantity below, "name value"), PREFIX.gp and, through gnuplot,
- * PREFIX.png (speed, grade, fuel rate and fuel used, module against
- * reference; and the module's predictions with their bounds against the
- * fuel used over each one's horizon, sim_host/prediction_judge.h, whose
- * rows are in PREFIX.prediction.csv). PREFIX defaults to build/run/report;
- * folders are created.
- *
- * --expect FILE: expected values, one per line, '#' starts a comment:
- *     NAME VALUE TOL      |measured - VALUE| <= TOL; TOL absolute, or with
- *                         '%' a percentage of VALUE (total_fuel_l 0.845 0.5%)
- *     NAME LIMIT          measured <= LIMIT (max_rate_error_pct 1.0)
- *     NAME <= LIMIT       the same
- *     NAME >= LIMIT       measured >= LIMIT (lfe1_frames >= 100)
- * NAME is one of the quantities in PREFIX.metrics (listed by --help). A
- * quantity that could not be measured fails its expectation. --junit FILE
- * writes a JUnit XML report: one testcase per expectation.
- *
- * Exit status: 0 (no --expect, or every expectation met), 1 (an expectation
- * not met), 2 (bad arguments, bad capture or expectation file, a file that
- * cannot be written, gnuplot failed); messages name the file and line.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -72,6 +26,87 @@
 #include "hal/replay/hal_replay_ecu.h"
 #include "prediction_judge.h"
 #include "truck_cal.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: run_report CAPTURE.log [--module-sa SA] [--warmup-s S] [--rate-floor-l-h F]\n"
+    "                  [--vehicles N] [--position P] [--gap-m D]\n"
+    "                  [--out PREFIX] [--no-plot] [--gnuplot PROG] [--title TEXT]\n"
+    "                  [--expect FILE] [--junit FILE] [--calib FILE]\n"
+    "\n"
+    "Judges a module from a capture of its bus: a summary, a CSV, a plot, and\n"
+    "with --expect a verdict.\n"
+    "\n"
+    "CAPTURE: any log the host tools read (candump -L as pfe_record writes it,\n"
+    "candump's printed output with -t a, z or A, Vector ASC) of one bus: the\n"
+    "inputs (CCVS1, SSI, PFE_PlatoonConfig, PFE_GradePreview, anything\n"
+    "not from the module) and the module's answers. It may start mid-drive and\n"
+    "carry several senders and PGNs the module does not read. The reference is\n"
+    "the double-precision estimator fed the capture's input frames as the module\n"
+    "handles them (one sender per input, staleness, a flat road without SSI,\n"
+    "platoon changes from PFE_PlatoonConfig). A silence of over 11 s (a logger\n"
+    "whose clock jumps) is crossed in one jump, as pfe_ecu_replay crosses it.\n"
+    "\n"
+    "Options:\n"
+    "  --module-sa SA      the module's source address (default 0x8C)\n"
+    "  --warmup-s S        rates are judged from S seconds after the first input\n"
+    "                      frame (default 5) to the last one\n"
+    "  --rate-floor-l-h F  relative rate errors only where the reference is at\n"
+    "                      least F L/h (default 5: below it the 0.05 L/h step of\n"
+    "                      the signal alone is 1 %); absolute errors everywhere\n"
+    "  --vehicles N, --position P, --gap-m D\n"
+    "                      the platoon the module was started with, used until a\n"
+    "                      PFE_PlatoonConfig says otherwise (default 1, 0, 10 m)\n"
+    "  --calib FILE        the trucks' calibration the module ran with, for the\n"
+    "                      reference too (default: the default calibration)\n"
+    "  --out PREFIX        where the outputs go (default build/run/report;\n"
+    "                      folders are created)\n"
+    "  --no-plot           no gnuplot run\n"
+    "  --gnuplot PROG      the gnuplot to run (default: gnuplot on PATH)\n"
+    "  --title TEXT        the plot's title\n"
+    "  --expect FILE       expected values (below); the exit status gives the verdict\n"
+    "  --junit FILE        a JUnit XML report: one testcase per expectation\n"
+    "  -h, --help          this help\n"
+    "\n"
+    "Compared: each fuel rate of the module (own truck: PFE_OwnFuel, else, in\n"
+    "older captures, LFE1; the platoon: PFE_PlatoonFuel) with what the reference\n"
+    "answers at an instant in the 5 ms before the frame (the module's tick phase\n"
+    "is not in the capture); fuel used between the module's first and last\n"
+    "totals (PFE_OwnFuel or HRLFC, PFE_PlatoonFuel) against the reference's\n"
+    "between the same instants. Rates within 2 s after the capture shows the\n"
+    "replay stalling or bunching (SSI more than 30 ms apart, CCVS1 outside 50 to\n"
+    "150 ms) or after the module reports 5 or more lost ticks are left out and\n"
+    "counted (rate_frames_disturbed_pct). When another node sends LFE1 (the\n"
+    "engine's measured fuel rate), the module's own-truck rate is judged against\n"
+    "it too (engine_rate_r, engine_fuel_ratio, overall and split by PFE_OwnFuel's\n"
+    "ModelIdentified). The predictions (PFE_FuelPrediction) are judged against\n"
+    "the fuel used over each one's horizon, where the capture drives to its end.\n"
+    "\n"
+    "Outputs: PREFIX.csv (time_s, speed_kmh, grade_pct, module_rate_l_h,\n"
+    "ref_rate_l_h, module_total_l, ref_total_l; NA where there is no value),\n"
+    "PREFIX.metrics (every quantity below, \"name value\"), PREFIX.prediction.csv\n"
+    "(one row per prediction), PREFIX.gp and, through gnuplot, PREFIX.png (speed,\n"
+    "grade, fuel rate, fuel used, and the predictions with their bounds; a panel\n"
+    "with nothing to plot says so).\n"
+    "\n"
+    "--expect FILE: one expectation per line, '#' starts a comment:\n"
+    "    NAME VALUE TOL   |measured - VALUE| <= TOL; TOL absolute, or with '%' a\n"
+    "                     percentage of VALUE (total_fuel_l 1.090 1%)\n"
+    "    NAME LIMIT       measured <= LIMIT (max_rate_error_pct 1.0)\n"
+    "    NAME <= LIMIT    the same\n"
+    "    NAME >= LIMIT    measured >= LIMIT (lfe1_frames >= 1140)\n"
+    "A quantity that could not be measured fails its expectation.\n"
+    "\n"
+    "Exit status: 0 (no --expect, or every expectation met), 1 (an expectation\n"
+    "not met), 2 (bad arguments, bad capture or expectation file, a file that\n"
+    "cannot be written, gnuplot failed); messages name the file and line.\n"
+    "\n"
+    "Examples:\n"
+    "  run_report build/run/capture.log --expect sim_host/data/logs/hilly_run.expect\n"
+    "  run_report bench.log --module-sa 0x8D --calib mytruck.cal --out build/bench/report\n"
+    "\n"
+    "Quantities (PREFIX.metrics, and names for --expect):\n";
 
 extern char **environ;
 
@@ -206,12 +241,12 @@ typedef struct {
 
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "usage: run_report CAPTURE.log [--module-sa SA] [--warmup-s S] [--rate-floor-l-h F]\n"
-            "                  [--vehicles N] [--position P] [--gap-m D]\n"
-            "                  [--out PREFIX] [--no-plot] [--gnuplot PROG] [--title TEXT]\n"
-            "                  [--expect FILE] [--junit FILE] [--calib FILE]\n"
-            "quantities for --expect:\n");
+    /* --help: the whole manual with the quantities; a usage error: its synopsis. */
+    if (f != stdout) {
+        cli_usage(f, k_manual, "run_report");
+        return;
+    }
+    cli_help(k_manual);
     for (int k = 0; k < Q_ALL; k++) {
         fprintf(f, "  %-28s %s\n", g_q[k].name, g_q[k].what);
     }

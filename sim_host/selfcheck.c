@@ -1,12 +1,9 @@
 /*
- * selfcheck - the model's known-answer run on the host.
+ * selfcheck - the model's known-answer run on the host, printed as the
+ * mps2-an386 image (hal/mps2/main_selfcheck.c) prints it.
  *
- *   selfcheck ROAD.csv
- *
- * Prints what the mps2-an386 image (hal/mps2/main_selfcheck.c) prints for
- * the same road, in the same format, so that `make test` can compare the
- * two byte for byte: the same inputs must give bit-identical outputs on the
- * host and on the Cortex-M4. Exit status 0, 1 if a run fails, 2 on bad input.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <inttypes.h>
 #include <stdio.h>
@@ -14,11 +11,30 @@
 #include "../firmware/pfe_fixed.h"
 #include "../firmware/pfe_selfcheck.h"
 #include "road_csv.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: selfcheck ROAD.csv\n"
+    "\n"
+    "The model's known-answer run on the host. Prints what the mps2-an386 image\n"
+    "prints for the same road, in the same format, so that make test can compare\n"
+    "the two byte for byte: the same inputs must give bit-identical outputs on the\n"
+    "host and on the Cortex-M4.\n"
+    "\n"
+    "Exit status 0, 1 if a run fails, 2 on bad input.\n"
+    "\n"
+    "Example:\n"
+    "  selfcheck sim_host/data/roads/hilly.csv\n";
 
 int main(int argc, char **argv)
 {
+    if (cli_help_asked(argc, argv)) {
+        cli_help(k_manual);
+        return 0;
+    }
     if (argc != 2) {
-        fprintf(stderr, "usage: selfcheck ROAD.csv\n");
+        cli_usage(stderr, k_manual, "selfcheck");
         return 2;
     }
     char err[512];

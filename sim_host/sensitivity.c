@@ -1,24 +1,9 @@
 /*
- * sensitivity - the thesis's sensitivity analysis (chapter 6) on road
- * profiles: grade, cw * Af, Pmax, time gap and mass changed one at a time by
- * the thesis's steps (sim_host/sensitivity_run.h lists them), the platoon
- * object model in double precision, N = 5 at 90 km/h unless told otherwise.
+ * sensitivity - the thesis's sensitivity analysis (chapter 6): the steps of
+ * each input are in sim_host/sensitivity_run.h.
  *
- *   sensitivity [--out DIR] [--vehicles N] [--set-speed-kmh V] [--no-plot]
- *               [--gnuplot PROG] ROAD.csv...
- *
- * For each road (named after its file, without ".csv") it prints a table of
- * every case (fuel, change against the nominal case, time, mean, min and
- * max speed, share of time at the power limit), writes DIR/NAME.csv with
- * the same rows and DIR/NAME.png (gnuplot, through the script it leaves in
- * DIR/NAME.gp), and prints their paths. Then come the analogues of thesis
- * tables 6.1 to 6.3 (and of 6.4, 6.5, lost from the thesis's text): fuel
- * change in percent, one row per road.
- *
- * Exit status: 0 on success; 1 when a case stalled (the platoon fell below
- * 1 m/s: its row says where, its fuel stops there and it is left out of the
- * plot) or gnuplot failed; 2 on bad arguments, an unreadable or bad road,
- * or an output that cannot be written.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -34,6 +19,40 @@
 #include "cli_args.h"
 #include "road_csv.h"
 #include "sensitivity_run.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: sensitivity [--out DIR] [--vehicles N] [--set-speed-kmh V] [--no-plot]\n"
+    "                   [--gnuplot PROG] ROAD.csv...\n"
+    "\n"
+    "The thesis's sensitivity analysis (chapter 6) on road profiles: grade,\n"
+    "cw * Af, Pmax, time gap and mass changed one at a time by the thesis's steps,\n"
+    "the platoon object model in double precision, N = 5 at 90 km/h unless told\n"
+    "otherwise.\n"
+    "\n"
+    "  --out DIR           where NAME.csv, NAME.gp and NAME.png go (default build/sensitivity)\n"
+    "  --vehicles N        platoon size, 1 to 32 (default 5)\n"
+    "  --set-speed-kmh V   cruise set speed and start speed, 5 to 250 (default 90)\n"
+    "  --no-plot           write the CSV only\n"
+    "  --gnuplot PROG      the gnuplot to run (default: gnuplot on PATH)\n"
+    "  -h, --help          this help\n"
+    "\n"
+    "For each road (named after its file, without \".csv\") it prints a table of\n"
+    "every case (fuel, change against the nominal case, time, mean, min and max\n"
+    "speed, share of time at the power limit), writes DIR/NAME.csv with the same\n"
+    "rows and DIR/NAME.png (gnuplot, through the script it leaves in DIR/NAME.gp),\n"
+    "and prints their paths. Then come the analogues of thesis tables 6.1 to 6.3\n"
+    "(and of 6.4, 6.5, lost from the thesis's text): fuel change in percent, one\n"
+    "row per road. The steps of each input: docs/thesis.md.\n"
+    "\n"
+    "Exit status: 0 on success; 1 when a case stalled (the platoon fell below\n"
+    "1 m/s: its row says where, its fuel stops there and it is left out of the\n"
+    "plot) or gnuplot failed; 2 on bad arguments, an unreadable or bad road, or\n"
+    "an output that cannot be written.\n"
+    "\n"
+    "Example:\n"
+    "  sensitivity --out build/sensitivity sim_host/data/roads/flat.csv sim_host/data/roads/hilly.csv\n";
 
 extern char **environ;
 
@@ -58,15 +77,12 @@ typedef struct {
 
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "usage: sensitivity [--out DIR] [--vehicles N] [--set-speed-kmh V] [--no-plot]\n"
-            "                   [--gnuplot PROG] ROAD.csv...\n"
-            "  --out DIR           where NAME.csv, NAME.gp and NAME.png go (default build/sensitivity)\n"
-            "  --vehicles N        platoon size, 1 to %u (default 5)\n"
-            "  --set-speed-kmh V   cruise set speed and start speed, 5 to 250 (default 90)\n"
-            "  --no-plot           write the CSV only\n"
-            "  --gnuplot PROG      the gnuplot to run (default: gnuplot on PATH)\n",
-            PFE_MAX_VEHICLES);
+    /* --help: the whole manual; a usage error: its synopsis. */
+    if (f == stdout) {
+        cli_help(k_manual);
+    } else {
+        cli_usage(f, k_manual, "sensitivity");
+    }
 }
 
 /* NAME from .../NAME.csv; -1 when empty or too long. */

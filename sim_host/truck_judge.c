@@ -1,72 +1,10 @@
 /*
  * truck_judge - judges the module's record of a foreign truck's log
- * (sim_host/truckgen.c replayed by pfe_ecu_replay --record).
+ * (truckgen replayed by pfe_ecu_replay --record): availability, hostile
+ * frames, identification.
  *
- *   truck_judge avail RECORD [--name NAME] [--module-sa SA] [--warmup-s S]
- *                     [--min-pct P] [--grade-source N] [--min-module-lfe1 N]
- *                     [--truth CSV [--max-fuel-err-pct E]]
- *   truck_judge hostile CLEAN HOSTILE --bursts N [--name NAME] [--module-sa SA]
- *                     [--expect conflicts|rejected [--frames F [--exact]]]
- *   truck_judge same LOG_A LOG_B
- *   truck_judge identify RECORD --truth CSV --from S --mass KG [--for S] [--name NAME]
- *                     [--module-sa SA] [--max-mass-err-pct E] [--max-fuel-err-pct E] [--off]
- *
- * same: two logs of one drive (truckgen's printed form and its -L form)
- * hold the same frames at the same times from their first frame.
- *
- * avail: of the module's PFE_OwnFuel frames (PGN 0xFF05, every 100 ms, the
- * LFE1 period) later than --warmup-s (default 10 s) after the record's first
- * frame and not after the log's end (its last LFE1 or HRLFC from another
- * node; the replay's last second, in which the inputs time out, is not the
- * drive), the share whose OwnFuelRate is valid must be at least --min-pct
- * (default 95); with --grade-source, every PFE_InputStatus after the
- * warm-up must say that GradeSource (0 slope sensor, 1 altitude, 2 assumed
- * flat); the module must never send LFE1 (HRLFC) while another node sends
- * it: no module LFE1 within three LFE1 periods (300 ms) after another
- * node's, no HRLFC within 3 s after another's; with --min-module-lfe1, it
- * must have sent at least N LFE1 (the engine's stopped: the module's own
- * estimate takes its place). With --truth (truckgen --truth: the true fuel
- * used every 100 ms of log time, read against the record's time from its
- * first frame), the module's own fuel used (PFE_OwnFuel OwnTotalFuelUsed)
- * from the end of the warm-up to the log's end against the truth's over the
- * same span, "bench: foreign_NAME_fuel_err_pct X pct"; with
- * --max-fuel-err-pct, |X| must not exceed E. Prints the figures, the last
- * PFE_Status counters, and "bench: foreign_NAME_available_pct X pct".
- *
- * hostile: HOSTILE is the record of CLEAN's log with hostile frames added
- * (truckgen --hostile, N bursts). Each valid rate the module sent in
- * HOSTILE (PFE_OwnFuel OwnFuelRate, LFE1 EngineFuelRate, PFE_PlatoonFuel
- * FuelRate) must be the one it sent at the same instant in CLEAN, valid:
- * a valid rate that differs or that CLEAN did not have is one computed from
- * a hostile input, and at most N are allowed per PGN (one tick per burst).
- * Rates that HOSTILE sends not available where CLEAN has them are counted
- * (the price of rejecting). --expect conflicts (rejected): PFE_Status
- * AddressConflicts (InputsRejected) at the end of HOSTILE must exceed
- * CLEAN's; with --frames F (the hostile frames in the log), by at most F,
- * and with --exact by F exactly (every spoofed or implausible frame
- * counted; the counter holds at 250). Prints "bench: hostile_NAME_bad_frames X frames".
- *
- * identify: RECORD is the replay, with a calibration that is not the
- * truck's (the default one), of a log whose engine LFE1 stops at --from S
- * (truckgen --engine-fuel-stop-s S; seconds from the record's first frame);
- * the truck's true mass is --mass KG. No other node's LFE1 with a value may
- * come after S (else the log is not what it is said to be). At S, the
- * module's last PFE_InputStatus must say MassSource 2 (identified) and
- * IdentificationState 1 (converged), and its VehicleMass must be within
- * --max-mass-err-pct (default 15) of KG; the module's own fuel used
- * (PFE_OwnFuel OwnTotalFuelUsed) over the --for seconds (default 300) from
- * S on, against the truth's (--truth, as for avail) over the same span, must
- * be within --max-fuel-err-pct (default 10), and the record must cover the
- * span. With --off, the contrast: the same drive replayed with no engine
- * LFE1 at all (truckgen --engine-fuel-stop-s 0), so nothing to identify
- * from; the figures are printed and the only checks are MassSource 0 (the
- * calibration) and IdentificationState 0 (learning) at S. Prints when
- * IdentificationState first said converged,
- * "bench: identify_mass_err_pct_NAME X pct" and
- * "bench: identify_fuel_err_pct_NAME X pct" (identify_off_... with --off).
- *
- * Exit status 0 when every check holds, 1 when one fails, 2 on bad
- * arguments or an unreadable record.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <errno.h>
 #include <fcntl.h>
@@ -81,6 +19,84 @@
 #include "cli_args.h"
 #include "canlog.h"
 #include "../firmware/pfe_codec.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: truck_judge avail RECORD [--name NAME] [--module-sa SA] [--warmup-s S]\n"
+    "                         [--min-pct P] [--grade-source N] [--min-module-lfe1 N]\n"
+    "                         [--truth CSV [--max-fuel-err-pct E]]\n"
+    "       truck_judge hostile CLEAN HOSTILE --bursts N [--name NAME] [--module-sa SA]\n"
+    "                         [--expect conflicts|rejected [--frames F [--exact]]]\n"
+    "       truck_judge same LOG_A LOG_B\n"
+    "       truck_judge identify RECORD --truth CSV --from S --mass KG [--for S] [--name NAME]\n"
+    "                         [--module-sa SA] [--max-mass-err-pct E] [--max-fuel-err-pct E]\n"
+    "                         [--off]\n"
+    "\n"
+    "Judges the module's record of a foreign truck's log (a truckgen log replayed\n"
+    "by pfe_ecu_replay --record). --module-sa is the module's source address\n"
+    "(default 0x8C); --name names the figures in the bench: lines.\n"
+    "\n"
+    "same: two logs of one drive (truckgen's printed form and its -L form)\n"
+    "hold the same frames at the same times from their first frame.\n"
+    "\n"
+    "avail: of the module's PFE_OwnFuel frames (PGN 0xFF05, every 100 ms, the\n"
+    "LFE1 period) later than --warmup-s (default 10 s) after the record's first\n"
+    "frame and not after the log's end (its last LFE1 or HRLFC from another\n"
+    "node; the replay's last second, in which the inputs time out, is not the\n"
+    "drive), the share whose OwnFuelRate is valid must be at least --min-pct\n"
+    "(default 95); with --grade-source, every PFE_InputStatus after the\n"
+    "warm-up must say that GradeSource (0 slope sensor, 1 altitude, 2 assumed\n"
+    "flat); the module must never send LFE1 (HRLFC) while another node sends\n"
+    "it: no module LFE1 within three LFE1 periods (300 ms) after another\n"
+    "node's, no HRLFC within 3 s after another's; with --min-module-lfe1, it\n"
+    "must have sent at least N LFE1 (the engine's stopped: the module's own\n"
+    "estimate takes its place). With --truth (truckgen --truth: the true fuel\n"
+    "used every 100 ms of log time, read against the record's time from its\n"
+    "first frame), the module's own fuel used (PFE_OwnFuel OwnTotalFuelUsed)\n"
+    "from the end of the warm-up to the log's end against the truth's over the\n"
+    "same span, \"bench: foreign_NAME_fuel_err_pct X pct\"; with\n"
+    "--max-fuel-err-pct, |X| must not exceed E. Prints the figures, the last\n"
+    "PFE_Status counters, and \"bench: foreign_NAME_available_pct X pct\".\n"
+    "\n"
+    "hostile: HOSTILE is the record of CLEAN's log with hostile frames added\n"
+    "(truckgen --hostile, N bursts). Each valid rate the module sent in\n"
+    "HOSTILE (PFE_OwnFuel OwnFuelRate, LFE1 EngineFuelRate, PFE_PlatoonFuel\n"
+    "FuelRate) must be the one it sent at the same instant in CLEAN, valid:\n"
+    "a valid rate that differs or that CLEAN did not have is one computed from\n"
+    "a hostile input, and at most N are allowed per PGN (one tick per burst).\n"
+    "Rates that HOSTILE sends not available where CLEAN has them are counted\n"
+    "(the price of rejecting). --expect conflicts (rejected): PFE_Status\n"
+    "AddressConflicts (InputsRejected) at the end of HOSTILE must exceed\n"
+    "CLEAN's; with --frames F (the hostile frames in the log), by at most F,\n"
+    "and with --exact by F exactly (every spoofed or implausible frame\n"
+    "counted; the counter holds at 250). Prints \"bench: hostile_NAME_bad_frames X frames\".\n"
+    "\n"
+    "identify: RECORD is the replay, with a calibration that is not the\n"
+    "truck's (the default one), of a log whose engine LFE1 stops at --from S\n"
+    "(truckgen --engine-fuel-stop-s S; seconds from the record's first frame);\n"
+    "the truck's true mass is --mass KG. No other node's LFE1 with a value may\n"
+    "come after S (else the log is not what it is said to be). At S, the\n"
+    "module's last PFE_InputStatus must say MassSource 2 (identified) and\n"
+    "IdentificationState 1 (converged), and its VehicleMass must be within\n"
+    "--max-mass-err-pct (default 15) of KG; the module's own fuel used\n"
+    "(PFE_OwnFuel OwnTotalFuelUsed) over the --for seconds (default 300) from\n"
+    "S on, against the truth's (--truth, as for avail) over the same span, must\n"
+    "be within --max-fuel-err-pct (default 10), and the record must cover the\n"
+    "span. With --off, the contrast: the same drive replayed with no engine\n"
+    "LFE1 at all (truckgen --engine-fuel-stop-s 0), so nothing to identify\n"
+    "from; the figures are printed and the only checks are MassSource 0 (the\n"
+    "calibration) and IdentificationState 0 (learning) at S. Prints when\n"
+    "IdentificationState first said converged,\n"
+    "\"bench: identify_mass_err_pct_NAME X pct\" and\n"
+    "\"bench: identify_fuel_err_pct_NAME X pct\" (identify_off_... with --off).\n"
+    "\n"
+    "Exit status 0 when every check holds, 1 when one fails, 2 on bad arguments\n"
+    "or an unreadable record.\n"
+    "\n"
+    "Examples:\n"
+    "  truck_judge avail t12.bus --name t12 --truth truth.csv --max-fuel-err-pct 10\n"
+    "  truck_judge hostile t12.bus t12_spoof.bus --bursts 10 --expect conflicts\n";
 
 typedef struct {
     uint64_t t_us;
@@ -824,6 +840,10 @@ static int same(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+    if (cli_help_asked(argc, argv)) {
+        cli_help(k_manual);
+        return 0;
+    }
     if ((argc >= 2) && (strcmp(argv[1], "same") == 0)) {
         return same(argc, argv);
     }
@@ -836,13 +856,6 @@ int main(int argc, char **argv)
     if ((argc >= 2) && (strcmp(argv[1], "identify") == 0)) {
         return identify(argc, argv);
     }
-    fprintf(stderr, "usage: truck_judge avail RECORD [--name NAME] [--module-sa SA] [--warmup-s S]\n"
-                    "                         [--min-pct P] [--grade-source N] [--min-module-lfe1 N]\n"
-                    "       truck_judge hostile CLEAN HOSTILE --bursts N [--name NAME] [--module-sa SA]\n"
-                    "                         [--expect conflicts|rejected [--frames F [--exact]]]\n"
-                    "       truck_judge same LOG_A LOG_B\n"
-                    "       truck_judge identify RECORD --truth CSV --from S --mass KG [--for S] [--name NAME]\n"
-                    "                         [--module-sa SA] [--max-mass-err-pct E] [--max-fuel-err-pct E]\n"
-                    "                         [--off]\n");
+    cli_usage(stderr, k_manual, "truck_judge");
     return 2;
 }

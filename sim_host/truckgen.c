@@ -1,69 +1,11 @@
 /*
- * truckgen - a foreign truck's J1939 bus as a bench records it, to test the
- * module against: a truck of another mass, two senders of the inputs, the
- * engine's own fuel rate, hundreds of PGNs the module does not read, no
- * address claims, starting mid-drive.
+ * truckgen - a foreign truck's J1939 bus as a bench records it (another mass,
+ * two senders of the inputs, the engine's own fuel rate, unread PGNs, hostile
+ * variants), to test the module against. Randomness from SplitMix64 streams,
+ * so a log is the same file on every machine.
  *
- *   truckgen [--calib FILE] [--profile KMH:S,...] [--road FILE.csv] [--start-s S]
- *            [--seed N] [--speed-noise-kmh SD] [--fuel-noise-pct P]
- *            [--ssi] [--ssi-source SA] [--vds] [--vds-period-ms MS] [--alt-noise-m SD]
- *            [--engine-fuel-stop-s S] [--hostile spoof|jump|random]
- *            [--hostile-period-s S] [--module-sa SA] [--others N]
- *            [--format printed|log] [--iface IF] [--truth CSV] [--out LOG]
- *
- * The truck (FILE, sim_host/truck_cal.h: the own truck's calibration;
- * default pfe_default_vehicle) drives a speed profile: each KMH:S phase
- * aims at KMH for S seconds, from standstill (default
- * 0:5,80:80,50:45,85:90,0:35,60:60,85:80,0:25: 0 to 80 km/h, cruise, slow to
- * 50, back to 85, a stop, 60, 85, a stop; 420 s). Driver: the acceleration
- * asked for is (target - v) / 2 s within -1.2 .. +1.0 m/s^2 (-1 m/s^2 to a
- * stop, and zero wheel force at standstill); the wheel force
- * (m + mj) a + resistance (thesis eq. 3.7, sim_host/ref_model.h, on the road
- * of --road, default flat) is held within the truck's traction and power
- * limit and its brake limit, and the speed follows (explicit Euler, 10 ms).
- * Frames (every frame of the log written from --start-s on, default 15 s, in
- * time order, with a few hundred microseconds of jitter):
- *   - CCVS1 from the engine (SA 0x00) every 100 ms: the speed plus a normal
- *     deviate of --speed-noise-kmh (default 0.3), quantised to SPN 84;
- *   - CCVS1 from the cab controller (SA 0x31) every 100 ms, speed not
- *     available; LFE1 from it, fuel rate not available;
- *   - LFE1 from the engine every 100 ms (until --engine-fuel-stop-s of log
- *     time, default never): the reference's fuel rate for the true truck
- *     (ref_fuel_rate(): zero, a fuel cut, at zero or negative wheel force)
- *     times 1 + a normal deviate of --fuel-noise-pct (default 2) percent,
- *     quantised to SPN 183's 0.05 L/h; HRLFC from the engine every 1 s,
- *     its total fuel used (0.001 L, from 123456.000 L);
- *   - with --ssi, SSI every 10 ms from --ssi-source (default 0x2A): the
- *     road's pitch; without, no SSI at all;
- *   - with --vds, VDS every --vds-period-ms (default 1000, J1939-71's rate
- *     for PGN 65256) from SA 0x1C: altitude (road profile from
- *     400 m) plus a normal deviate of --alt-noise-m (default 1.5 m), GNSS
- *     speed, bearing 90 deg;
- *   - --others (default 220) PGNs the module does not read from 14 senders:
- *     EEC1, EEC2, ETC1, TSC1 (to the engine), EBC1, ET1, EFL/P1, AMB, DM1 of
- *     several ECUs, then PDU2 PGNs of 0xFC00 .. 0xFEFF (less those the
- *     module reads) at 0.1 to 5 s (most at 1 s), with junk payloads;
- *   - no address claim, no request.
- * Hostile variants (--hostile), every --hostile-period-s (default 40 s) from
- * 30 s of log time, extra frames on top of the same log (every other frame
- * is that of the log without --hostile, byte for byte), 50 ms after a
- * regular CCVS1:
- *   spoof   CCVS1 from --module-sa (default 0x8C) at 200 km/h, every 100 ms
- *           for 2 s (20 frames);
- *   jump    one CCVS1 from the engine at 250 km/h, the next regular one
- *           back at the true speed;
- *   random  10 frames over 1 s from the senders in use: CCVS1 and LFE1 from
- *           the engine, SSI from its sender (--ssi), 8 random bytes each.
- * The number of bursts and of hostile frames is printed on standard error
- * ("truckgen: B hostile bursts, F hostile frames").
- * Output: candump's printed form, -t z ("(000.011063)  can0  18FEF100
- * [8]  FF 12 ..."), or with --format log candump -L ("(1700000015.011063)
- * can0 18FEF100#FF12..."); interface --iface (default can0). --truth writes
- * one CSV line per 100 ms of log time: t_s, speed_kmh, grade_pct,
- * force_n, fuel_l_h (the true rate before noise), fuel_l (true total).
- * Randomness: SplitMix64 streams from --seed (default 1), so a log is the
- * same file on every machine for the same options.
- * Exit status 0; 1 when the output cannot be written; 2 on bad arguments.
+ * The manual (every option, the exit status, examples) is its --help:
+ * k_manual below.
  */
 #include <errno.h>
 #include <math.h>
@@ -79,6 +21,79 @@
 #include "ref_model.h"
 #include "road_csv.h"
 #include "truck_cal.h"
+#include "lib/cli_help.h"
+
+/* The manual: --help prints it whole, a usage error its first lines. */
+static const char k_manual[] =
+    "usage: truckgen [--calib FILE] [--profile KMH:S,...] [--road FILE.csv] [--start-s S]\n"
+    "                [--seed N] [--speed-noise-kmh SD] [--fuel-noise-pct P]\n"
+    "                [--ssi] [--ssi-source SA] [--vds] [--vds-period-ms MS] [--alt-noise-m SD]\n"
+    "                [--engine-fuel-stop-s S] [--hostile spoof|jump|random]\n"
+    "                [--hostile-period-s S] [--module-sa SA] [--others N]\n"
+    "                [--format printed|log] [--iface IF] [--truth CSV] [--out LOG]\n"
+    "\n"
+    "Writes a foreign truck's J1939 bus as a bench records it, to test the module\n"
+    "against: a truck of another mass, two senders of the inputs, the engine's\n"
+    "own fuel rate, hundreds of PGNs the module does not read, no address claims,\n"
+    "starting mid-drive.\n"
+    "\n"
+    "The truck (--calib FILE: the own truck's calibration file;\n"
+    "default: the default calibration) drives a speed profile (--profile): each KMH:S phase\n"
+    "aims at KMH for S seconds, from standstill (default\n"
+    "0:5,80:80,50:45,85:90,0:35,60:60,85:80,0:25: 0 to 80 km/h, cruise, slow to\n"
+    "50, back to 85, a stop, 60, 85, a stop; 420 s). Driver: the acceleration\n"
+    "asked for is (target - v) / 2 s within -1.2 .. +1.0 m/s^2 (-1 m/s^2 to a\n"
+    "stop, and zero wheel force at standstill); the wheel force\n"
+    "(m + mj) a + resistance (thesis eq. 3.7, the reference model, on the road\n"
+    "of --road, default flat) is held within the truck's traction and power\n"
+    "limit and its brake limit, and the speed follows (explicit Euler, 10 ms).\n"
+    "Frames (every frame of the log written from --start-s on, default 15 s, in\n"
+    "time order, with a few hundred microseconds of jitter):\n"
+    "  - CCVS1 from the engine (SA 0x00) every 100 ms: the speed plus a normal\n"
+    "    deviate of --speed-noise-kmh (default 0.3), quantised to SPN 84;\n"
+    "  - CCVS1 from the cab controller (SA 0x31) every 100 ms, speed not\n"
+    "    available; LFE1 from it, fuel rate not available;\n"
+    "  - LFE1 from the engine every 100 ms (until --engine-fuel-stop-s of log\n"
+    "    time, default never): the reference's fuel rate for the true truck\n"
+    "    (zero, a fuel cut, at zero or negative wheel force)\n"
+    "    times 1 + a normal deviate of --fuel-noise-pct (default 2) percent,\n"
+    "    quantised to SPN 183's 0.05 L/h; HRLFC from the engine every 1 s,\n"
+    "    its total fuel used (0.001 L, from 123456.000 L);\n"
+    "  - with --ssi, SSI every 10 ms from --ssi-source (default 0x2A): the\n"
+    "    road's pitch; without, no SSI at all;\n"
+    "  - with --vds, VDS every --vds-period-ms (default 1000, J1939-71's rate\n"
+    "    for PGN 65256) from SA 0x1C: altitude (road profile from\n"
+    "    400 m) plus a normal deviate of --alt-noise-m (default 1.5 m), GNSS\n"
+    "    speed, bearing 90 deg;\n"
+    "  - --others (default 220) PGNs the module does not read from 14 senders:\n"
+    "    EEC1, EEC2, ETC1, TSC1 (to the engine), EBC1, ET1, EFL/P1, AMB, DM1 of\n"
+    "    several ECUs, then PDU2 PGNs of 0xFC00 .. 0xFEFF (less those the\n"
+    "    module reads) at 0.1 to 5 s (most at 1 s), with junk payloads;\n"
+    "  - no address claim, no request.\n"
+    "Hostile variants (--hostile), every --hostile-period-s (default 40 s) from\n"
+    "30 s of log time, extra frames on top of the same log (every other frame\n"
+    "is that of the log without --hostile, byte for byte), 50 ms after a\n"
+    "regular CCVS1:\n"
+    "  spoof   CCVS1 from --module-sa (default 0x8C) at 200 km/h, every 100 ms\n"
+    "          for 2 s (20 frames);\n"
+    "  jump    one CCVS1 from the engine at 250 km/h, the next regular one\n"
+    "          back at the true speed;\n"
+    "  random  10 frames over 1 s from the senders in use: CCVS1 and LFE1 from\n"
+    "          the engine, SSI from its sender (--ssi), 8 random bytes each.\n"
+    "The number of bursts and of hostile frames is printed on standard error\n"
+    "(\"truckgen: B hostile bursts, F hostile frames\").\n"
+    "Output: candump's printed form, -t z (\"(000.011063)  can0  18FEF100\n"
+    "[8]  FF 12 ...\"), or with --format log candump -L (\"(1700000015.011063)\n"
+    "can0 18FEF100#FF12...\"); interface --iface (default can0). --truth writes\n"
+    "one CSV line per 100 ms of log time: t_s, speed_kmh, grade_pct,\n"
+    "force_n, fuel_l_h (the true rate before noise), fuel_l (true total).\n"
+    "Randomness: SplitMix64 streams from --seed (default 1), so a log is the\n"
+    "same file on every machine for the same options.\n"
+    "Exit status 0; 1 when the output cannot be written; 2 on bad arguments.\n"
+    "\n"
+    "Examples:\n"
+    "  truckgen --calib sim_host/data/trucks/truck12t.cal --truth truth.csv --out t12.txt\n"
+    "  truckgen --calib sim_host/data/trucks/truck60t.cal --hostile spoof --out t60_spoof.txt\n";
 
 #define TICK_US 10000U
 #define T0_S 1700000000ULL
@@ -174,13 +189,7 @@ static int parse_profile(const char *s, profile_t *p)
 
 static void usage(void)
 {
-    fprintf(stderr,
-            "usage: truckgen [--calib FILE] [--profile KMH:S,...] [--road FILE.csv] [--start-s S]\n"
-            "                [--seed N] [--speed-noise-kmh SD] [--fuel-noise-pct P]\n"
-            "                [--ssi] [--ssi-source SA] [--vds] [--vds-period-ms MS] [--alt-noise-m SD]\n"
-            "                [--engine-fuel-stop-s S] [--hostile spoof|jump|random]\n"
-            "                [--hostile-period-s S] [--module-sa SA] [--others N]\n"
-            "                [--format printed|log] [--iface IF] [--truth CSV] [--out LOG]\n");
+    cli_usage(stderr, k_manual, "truckgen");
 }
 
 static int parse_args(int argc, char **argv, options_t *o)
@@ -591,6 +600,10 @@ static int generate(const options_t *o, const pfe_vehicle_calib_t *veh, const ro
 
 int main(int argc, char **argv)
 {
+    if (cli_help_asked(argc, argv)) {
+        cli_help(k_manual);
+        return 0;
+    }
     static options_t o;
     const int prc = parse_args(argc, argv, &o);
     if (prc != 0) {
