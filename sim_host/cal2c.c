@@ -1,6 +1,6 @@
 /*
- * cal2c - turns a truck calibration file (sim_host/truck_cal.h) into C source
- * for a Cortex-M4 replay image: the const calibrations and
+ * cal2c - turns a truck calibration file (sim_host/lib/truck_cal.h) into C
+ * source for a Cortex-M4 replay image: the const calibrations and
  * image_calib_apply() of hal/mps2/image_calib.h, set as truck_cal_apply()
  * does on the host.
  *

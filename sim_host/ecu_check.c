@@ -1,7 +1,7 @@
 /*
  * ecu_check - judge a module's answers on a recorded bus against the
- * double-precision reference (sim_host/bus_ref.h, its BUS_REF_HISTORY ticks),
- * for the end-to-end runs on vcan.
+ * double-precision reference (sim_host/ref/bus_ref.h, its BUS_REF_HISTORY
+ * ticks), for the end-to-end runs on vcan.
  *
  * The manual (every option, the exit status, examples) is its --help:
  * k_manual below.

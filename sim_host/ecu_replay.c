@@ -1,7 +1,8 @@
 /*
  * pfe_ecu_replay - the module's firmware run over a CAN log on the host, in
  * logical time (hal/replay/hal_replay_ecu.h), the log read through
- * sim_host/replay_source.h; its twin on the Cortex-M4 is hal/mps2/main_ecu.c.
+ * sim_host/lib/replay_source.h; its twin on the Cortex-M4 is
+ * hal/mps2/main_ecu.c.
  *
  * The manual (every option, the exit status, examples) is its --help:
  * k_manual below.

@@ -1,7 +1,7 @@
 /*
- * pfe_decode - a CAN log decoded through the DBC (sim_host/dbc.h): one line,
- * or one CSV row, per frame; J1939 not-available, error and out-of-range
- * values shown as such, never as numbers.
+ * pfe_decode - a CAN log decoded through the DBC (sim_host/lib/dbc.h): one
+ * line, or one CSV row, per frame; J1939 not-available, error and
+ * out-of-range values shown as such, never as numbers.
  *
  * The manual (every option, the exit status, examples) is its --help:
  * k_manual below.

@@ -1,10 +1,10 @@
 /*
- * roadgen - writes the thesis's three test roads as road profile CSV (format
- * in road_csv.h). hilly is built the way a motorway's vertical alignment is
- * designed: constant-grade tangents joined by parabolic vertical curves (rate
- * 1/R for a curve of radius R), from a fixed-seed integer generator, all in
- * integer arithmetic, then scaled to span exactly -3 % to +4 % and checked
- * (hilly_check()).
+ * roadgen - writes the thesis's three test roads as road profile CSV
+ * (format in sim_host/lib/road_csv.h). hilly is built the way a motorway's
+ * vertical alignment is designed: constant-grade tangents joined by
+ * parabolic vertical curves (rate 1/R for a curve of radius R), from a
+ * fixed-seed integer generator, all in integer arithmetic, then scaled to
+ * span exactly -3 % to +4 % and checked (hilly_check()).
  *
  * The manual (every option, the exit status, examples) is its --help:
  * k_manual below.

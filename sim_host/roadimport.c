@@ -1,6 +1,7 @@
 /*
- * roadimport - a road profile (road_csv.h) from a GPX track with elevations
- * or a distance/elevation CSV (the rules: sim_host/road_import.h).
+ * roadimport - a road profile (sim_host/lib/road_csv.h) from a GPX track with
+ * elevations or a distance/elevation CSV (the rules:
+ * sim_host/lib/road_import.h).
  *
  * The manual (every option, the exit status, examples) is its --help:
  * k_manual below.

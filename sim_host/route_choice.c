@@ -1,7 +1,7 @@
 /*
  * route_choice - which route burns the least fuel, and whether that is
  * guaranteed (thesis 5.1 and the rule of its chapter 7; the bounds of
- * fuel_bounds.h).
+ * sim_host/ref/fuel_bounds.h).
  *
  * The manual (every option, the exit status, examples) is its --help:
  * k_manual below.

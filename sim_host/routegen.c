@@ -1,6 +1,7 @@
 /*
- * routegen - writes a route profile as road CSV (format in road_csv.h): a
- * bundled route or a seeded random one (route_gen.h).
+ * routegen - writes a route profile as road CSV (format in
+ * sim_host/lib/road_csv.h): a bundled route or a seeded random one
+ * (sim_host/lib/route_gen.h).
  *
  * The manual (every option, the exit status, examples) is its --help:
  * k_manual below.

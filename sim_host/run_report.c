@@ -1,7 +1,8 @@
 /*
  * run_report - judge a module from a capture of its bus: summary, CSV, plot,
- * and with --expect a verdict. The reference is sim_host/bus_ref.h's; how the
- * capture is read: sim_host/capture.h; docs/harness.md, "The judge".
+ * and with --expect a verdict. The reference is sim_host/ref/bus_ref.h's;
+ * how the capture is read: sim_host/lib/capture.h; docs/harness.md, "The
+ * judge".
  *
  * The manual (every option, the exit status, examples) is its --help:
  * k_manual below.

@@ -1,6 +1,6 @@
 /*
  * sensitivity - the thesis's sensitivity analysis (chapter 6): the steps of
- * each input are in sim_host/sensitivity_run.h.
+ * each input are in sim_host/ref/sensitivity_run.h.
  *
  * The manual (every option, the exit status, examples) is its --help:
  * k_manual below.
