@@ -459,6 +459,29 @@ void object_sim_truck_grades(object_sim_t *s, unsigned n_points, double pitch_m)
     s->grade_pitch_m = pitch_m;
 }
 
+void object_sim_policy_drag(object_sim_t *s, const node_config_t *cfg)
+{
+    s->policy_drag = cfg;
+}
+
+/* eq. 4.6 with phi_i of the policy's gap at speed v: the air drag
+ * coefficient (N per (m/s)^2) and the formation drag's (pfe_platoon.h). */
+static void policy_air_k(const node_config_t *cfg, double mass, double v, double *air_k, double *formation)
+{
+    const unsigned n = cfg->n_vehicles;
+    const double gap = node_desired_gap_m(cfg, v);
+    double k = 0.0, most = 0.0;
+    for (unsigned i = 0U; i < n; i++) {
+        ref_vehicle_t t;
+        ref_vehicle_init(&t, cfg->vehicle[i], cfg->env,
+                         (n > 1U) ? ref_drag_reduction_pct(cfg->drag, i, n, gap) : 0.0);
+        k += t.air_k;
+        most = fmax(most, t.air_k / t.mass);
+    }
+    *air_k = k;
+    *formation = fmax(0.0, (most * mass) - k);
+}
+
 static double object_grade(const object_sim_t *s, double at_m)
 {
     if (s->grade_points <= 1U) {
@@ -486,8 +509,14 @@ int object_sim_step(object_sim_t *s)
     const double dt = s->step_s;
     const double x = s->position_m;
     const double mid = x + (v * dt / 2.0);
-    const double resist = ref_object_resistance(pl, v, object_grade(s, mid));
-    const double f_max = ref_platoon_force_max(pl, v);
+    double resist = ref_object_resistance(pl, v, object_grade(s, mid));
+    double f_max = ref_platoon_force_max(pl, v);
+    if (s->policy_drag != NULL) {
+        double k, formation;
+        policy_air_k(s->policy_drag, o->mass, v, &k, &formation);
+        resist += (k - o->air_k) * v * v;
+        f_max = fmax(ref_wheel_force_max(o->power_max, o->traction_max, v) - (formation * v * v), -o->brake_max);
+    }
     const double force = ref_pi_step(&s->pi, s->set_speed_m_s - v, dt, -o->brake_max, f_max);
     const double accel = clamp((force - resist) / o->mass, -ACCEL_MAX, ACCEL_MAX);
     const double v1 = clamp(v + (accel * dt), 0.0, SPEED_MAX);

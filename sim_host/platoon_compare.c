@@ -131,6 +131,7 @@ typedef struct {
     model_summary_t node, object;
     model_summary_t node_point;  /* with a length: the same platoon of point masses */
     double object_trucks_l;      /* object model, grade under each truck */
+    double object_drag_l;        /* object model, the drag reduction of the policy's gap at its speed */
     double truck_fuel_l[NODE_MAX_VEHICLES], truck_brake_j[NODE_MAX_VEHICLES];
     double point_fuel_l[NODE_MAX_VEHICLES], point_brake_j[NODE_MAX_VEHICLES];
     double ref_fuel_l, ref_time_s;
@@ -182,8 +183,10 @@ static int run_node(const node_config_t *cfg, const ref_road_t *road, model_summ
     return node_sim_run(&g_node, out);
 }
 
-/* trucks: the grade under each truck (object_sim_truck_grades) */
-static int run_object(const node_config_t *cfg, const ref_road_t *road, bool trucks, model_summary_t *out)
+/* trucks: the grade under each truck (object_sim_truck_grades); policy_drag:
+ * the drag reduction of the policy's gap at its speed (object_sim_policy_drag) */
+static int run_object_as(const node_config_t *cfg, const ref_road_t *road, bool trucks, bool policy_drag,
+                         model_summary_t *out)
 {
     if ((object_platoon_build(&g_object_pl, cfg, OBJECT_NOMINAL) != 0) ||
         (object_sim_init(&g_object, &g_object_pl, cfg->cruise, road, cfg->set_speed_m_s,
@@ -194,7 +197,15 @@ static int run_object(const node_config_t *cfg, const ref_road_t *road, bool tru
         object_sim_truck_grades(&g_object, cfg->n_vehicles,
                                 cfg->length_m + node_desired_gap_m(cfg, cfg->set_speed_m_s));
     }
+    if (policy_drag) {
+        object_sim_policy_drag(&g_object, cfg);
+    }
     return object_sim_run(&g_object, out);
+}
+
+static int run_object(const node_config_t *cfg, const ref_road_t *road, bool trucks, model_summary_t *out)
+{
+    return run_object_as(cfg, road, trucks, false, out);
 }
 
 /* The object model as ref_sim steps it: 10 m of distance per step. Only for
@@ -252,16 +263,18 @@ static void print_length_tables(const node_config_t *cfg, const road_result_t *r
     }
     printf("\nNode model: fuel with length against point masses, the gap [m], and the object model "
            "against the node model [%%] with the grade at one point (eq. 4.10) and under each truck "
-           "(mean of N places %.1f m apart)\n", cfg->length_m + node_desired_gap_m(cfg, cfg->set_speed_m_s));
-    printf("%-12s %12s %12s %9s %9s %9s %14s %10s %10s\n", "road", "node [L]", "L=0 [L]", "length %",
-           "min gap", "max gap", "gap at vmin", "object %", "trucks %");
+           "(mean of N places %.1f m apart), and with the drag reduction of the policy's gap at its "
+           "speed instead of eq. 4.7's\n", cfg->length_m + node_desired_gap_m(cfg, cfg->set_speed_m_s));
+    printf("%-12s %12s %12s %9s %9s %9s %14s %10s %10s %10s\n", "road", "node [L]", "L=0 [L]", "length %",
+           "min gap", "max gap", "gap at vmin", "object %", "trucks %", "gap(v) %");
     for (int r = 0; r < n_roads; r++) {
         const double f = res[r].node.fuel_l;
         const double vmin = res[r].node.min_kmh / 3.6;
-        printf("%-12s %12.4f %12.4f %+9.3f %9.3f %9.3f %7.3f @%3.0f %+10.3f %+10.3f\n", res[r].name, f,
+        printf("%-12s %12.4f %12.4f %+9.3f %9.3f %9.3f %7.3f @%3.0f %+10.3f %+10.3f %+10.3f\n", res[r].name, f,
                res[r].node_point.fuel_l, 100.0 * (f - res[r].node_point.fuel_l) / res[r].node_point.fuel_l,
                res[r].node.min_gap_m, res[r].node.max_gap_m, node_desired_gap_m(cfg, vmin), vmin * 3.6,
-               100.0 * (res[r].object.fuel_l - f) / f, 100.0 * (res[r].object_trucks_l - f) / f);
+               100.0 * (res[r].object.fuel_l - f) / f, 100.0 * (res[r].object_trucks_l - f) / f,
+               100.0 * (res[r].object_drag_l - f) / f);
     }
     printf("  gap at vmin: the policy's desired gap at the lowest speed any truck reached [m @ km/h]; "
            "thesis: object within 0.053 to 0.25 %% of node (point masses)\n");
@@ -428,13 +441,16 @@ int main(int argc, char **argv)
             point = cfg;
             point.length_m = 0.0;
             model_summary_t unused_obj;
+            model_summary_t drag_obj;
             if ((run_node(&point, road, &res[r].node_point) != 0) ||
+                (run_object_as(&cfg, road, false, true, &drag_obj) != 0) ||
                 (run_object(&cfg, road, true, &unused_obj) != 0)) {
                 fprintf(stderr, "platoon_compare: a model stalled on %s\n", res[r].path);
                 status = 1;
                 break;
             }
             res[r].object_trucks_l = unused_obj.fuel_l;
+            res[r].object_drag_l = drag_obj.fuel_l;
             for (unsigned i = 0U; i < cfg.n_vehicles; i++) {
                 res[r].point_fuel_l[i] = g_node.fuel_l[i];
                 res[r].point_brake_j[i] = g_node.brake_j[i];
