@@ -502,7 +502,10 @@ int main(int argc, char **argv)
            margin_kmh, no_drag ? "no drag reduction" : "drag reduction of pfe_default_drag");
     if (cfg.spacing == NODE_SPACING_HEADWAY) {
         printf("spacing policy: headway, %.3f s between two trucks' fronts passing a point (gap = %.3f s "
-               "v - %.1f m)\n", node_headway_s(&cfg), node_headway_s(&cfg), cfg.length_m);
+               "v - %.1f m, at least %.1f m)\n", node_headway_s(&cfg), node_headway_s(&cfg), cfg.length_m,
+               cfg.headway_floor_m);
+    } else {
+        printf("spacing policy: gap = %.1f m + %.2f s v, rear to front\n", cfg.standstill_m, cfg.time_gap_s);
     }
     printf("both models step %.3f s of time; ref_sim steps 10 m of distance\n\n", cfg.step_s);
 
