@@ -87,7 +87,7 @@
  * catching up (the four followers brake 71.7 MJ, less than point masses),
  * but the gap closes as the platoon slows, faster than h v does (dd/dv =
  * T = 1.06 s against 0.4 s): 5.51 m at 74.7 km/h on the uphill road, 2.85 m
- * at 65.9 km/h on the hilly road, and without a floor it would reach 0 at
+ * on the hilly road (lowest speed 65.9 km/h), and without a floor 0 at
  * L / T = 56 km/h (on the random routes, without the floor, the gap fell
  * below 2 m on 137 of 250 and the trucks touched on one). The followers
  * then get more slipstream on every climb than the object model's gap at
@@ -99,13 +99,17 @@
  * (object_sim_policy_drag, not the firmware's model) the uphill road is
  * -0.07 % (its difference is the gap's drag) and the hilly +0.70 % (the
  * rest there is the followers' gap tracking on the steep part of phi at 3
- * to 5 m); on the random routes it is no better (0.41 % on average, at
+ * to 5 m: with follower gains kp 3 /s^2, ki 0.3 /s^3 it is +0.42 %); on the
+ * random routes it is no better (0.41 % on average, at
  * worst -1.77 %, seed 5): there the platoon slows to 52 km/h, below the
  * floor's (L + 3 m) / T = 66 km/h, where the gap is held at 3 m and the
  * followers fall back (to 21 m) and catch up again. Neither policy brings
  * the object model within 0.3 % of the node model for trucks of length;
  * the headway policy is the one whose kinematics the object model
- * describes, and the one platoon_compare's length tables use. The 3 m
+ * describes, and the one platoon_compare's length tables use. The default
+ * stays the gap policy: it is how an adaptive cruise control keeps its
+ * distance (rear to front, growing with speed), and with it the node model
+ * shows what the object model misses for such a platoon. The 3 m
  * floor is the model's own choice (the drag table's data starts at 2 m),
  * not a safety figure: a lower floor keeps more routes free of catching up
  * but lets the trucks nearly touch (no floor: below 2 m on 137 of 250).
