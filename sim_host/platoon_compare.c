@@ -3,7 +3,8 @@
  *
  *   platoon_compare --road FILE.csv [--road FILE.csv ...] [--vehicles N]
  *                   [--set-speed-kmh V] [--time-gap-s H] [--standstill-m D0]
- *                   [--length-m L] [--spacing gap|headway] [--margin-kmh M]
+ *                   [--length-m L] [--spacing gap|headway] [--headway-floor-m F]
+ *                   [--margin-kmh M]
  *                   [--step-s DT] [--no-drag-reduction] [--repeat K]
  *   platoon_compare --only node|object --road FILE.csv [options]
  *   platoon_compare --bench --road FILE.csv [options]
@@ -96,6 +97,7 @@ static void usage(FILE *f)
             "  --length-m L         truck length (default 0: point masses, as in the thesis)\n"
             "  --spacing POLICY     gap: gap = D0 + H v (default); headway: a constant time between\n"
             "                       two trucks' fronts passing a point, the same gap at the set speed\n"
+            "  --headway-floor-m F  headway policy: the smallest desired gap (default 3)\n"
             "  --margin-kmh M       followers' own cruise control at set speed + M (default 2)\n"
             "  --step-s DT          time step of both models, 0.001 to 1 (default 0.1)\n"
             "  --no-drag-reduction  no slipstream in either model\n"
@@ -294,6 +296,7 @@ int main(int argc, char **argv)
     double n = 5.0, set_kmh = 90.0, time_gap = 0.4, standstill = 0.0, length = 0.0, step = 0.1;
     double repeat = 9.0, margin_kmh = 2.0;
     node_spacing_t spacing = NODE_SPACING_GAP;
+    double headway_floor = 3.0;
     int no_drag = 0;
     int bench = 0;
     for (int i = 1; i < argc; i++) {
@@ -331,6 +334,8 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "--spacing") == 0) {
             badv = (strcmp(v, "gap") != 0) && (strcmp(v, "headway") != 0);
             spacing = (strcmp(v, "headway") == 0) ? NODE_SPACING_HEADWAY : NODE_SPACING_GAP;
+        } else if (strcmp(a, "--headway-floor-m") == 0) {
+            badv = cli_parse_double(v, 0.0, 100.0, &headway_floor);
         } else if (strcmp(a, "--margin-kmh") == 0) {
             badv = cli_parse_double(v, 0.0, 36.0, &margin_kmh);
         } else if (strcmp(a, "--length-m") == 0) {
@@ -369,6 +374,7 @@ int main(int argc, char **argv)
     cfg.follow_margin_m_s = margin_kmh / 3.6;
     cfg.length_m = length;
     cfg.spacing = spacing;
+    cfg.headway_floor_m = headway_floor;
     cfg.step_s = step;
     if (no_drag) {
         cfg.drag = &pfe_no_drag_reduction;

@@ -195,7 +195,8 @@ static void test_random_routes_with_trucks_of_length(void **state)
     static int32_t mpct[ROUTE_HILLY_SAMPLES];
     static double grade[ROUTE_HILLY_SAMPLES];
     double worst[4] = {0.0, 0.0, 0.0, 0.0}, sum_abs[4] = {0.0, 0.0, 0.0, 0.0}, smallest_gap = INFINITY;
-    unsigned within[4] = {0U, 0U, 0U, 0U}, below_2m = 0U;
+    unsigned within[4] = {0U, 0U, 0U, 0U}, below_2m = 0U, below_2m_no_floor = 0U;
+    double smallest_no_floor = INFINITY;
     uint64_t worst_seed[4] = {0U, 0U, 0U, 0U}, gap_seed = 0U;
     for (uint64_t seed = 1U; seed <= ROUTES; seed++) {
         route_gen_hilly(seed, mpct);
@@ -206,14 +207,18 @@ static void test_random_routes_with_trucks_of_length(void **state)
         assert_int_equal(node_road_from_percent(grade, ROUTE_HILLY_SAMPLES, ROUTE_HILLY_SPACING_M, &r), 0);
         node_config_t cfg;
         node_config_default(&cfg, 5U);
-        compare_t c[3];
+        compare_t c[4];
         cfg.length_m = 0.0;
         compare(&cfg, &r.road, &c[0]);
         cfg.length_m = LENGTH_M;
         compare(&cfg, &r.road, &c[1]);
         cfg.spacing = NODE_SPACING_HEADWAY;
         compare(&cfg, &r.road, &c[2]);
+        cfg.headway_floor_m = 0.0;
+        compare(&cfg, &r.road, &c[3]);
         node_road_free(&r);
+        below_2m_no_floor += (c[3].min_gap_m < 2.0) ? 1U : 0U;
+        smallest_no_floor = fmin(smallest_no_floor, c[3].min_gap_m);
         for (int p = 0; p < 4; p++) {
             const double e = (p < 3) ? pct(c[p].object_l, c[p].node_l) : pct(c[2].drag_l, c[2].node_l);
             sum_abs[p] += fabs(e);
@@ -238,8 +243,11 @@ static void test_random_routes_with_trucks_of_length(void **state)
     }
     print_message("%u routes, 16.5 m, headway: smallest gap %.2f m (seed %" PRIu64 "), below 2 m on %u\n",
                   ROUTES, smallest_gap, gap_seed, below_2m);
+    print_message("%u routes, 16.5 m, headway without the floor: smallest gap %.2f m, below 2 m on %u\n", ROUTES,
+                  smallest_no_floor, below_2m_no_floor);
     /* the figures node_model.h states, with a little to spare */
     assert_in_range(lround(1000.0 * sum_abs[2] / ROUTES), 0, 400);
+    assert_in_range(below_2m_no_floor, 100U, ROUTES); /* why the floor */
     assert_abs_within(worst[2], 1.2);
     assert_int_equal(below_2m, 0);
     assert_in_range(lround(1000.0 * sum_abs[1] / ROUTES), 1000, 3000); /* the gap policy: far off */
