@@ -14,6 +14,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_can.h"
 #include "pfe_codec.h"
@@ -76,7 +78,7 @@ static void ccvs1(uint8_t sa, pfe_sig_state_t st, int32_t mm_s)
 {
     pfe_can_frame_t f;
     const pfe_msg_ccvs1_t m = {{mm_s, st}};
-    assert_true(pfe_codec_encode_ccvs1(&f, &m, sa) >= 0);
+    ASSERT_GE(pfe_codec_encode_ccvs1(&f, &m, sa), 0);
     put(&f);
 }
 
@@ -84,7 +86,7 @@ static void ssi(uint8_t sa, int32_t pitch_udeg)
 {
     pfe_can_frame_t f;
     const pfe_msg_ssi_t m = {{pitch_udeg, PFE_SIG_VALID}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ssi(&f, &m, sa) >= 0);
+    ASSERT_GE(pfe_codec_encode_ssi(&f, &m, sa), 0);
     put(&f);
 }
 
@@ -92,7 +94,7 @@ static void lfe1(uint8_t sa, pfe_sig_state_t st, uint32_t nl_s)
 {
     pfe_can_frame_t f;
     const pfe_msg_lfe1_t m = {{nl_s, st}};
-    assert_true(pfe_codec_encode_lfe1(&f, &m, sa) >= 0);
+    ASSERT_GE(pfe_codec_encode_lfe1(&f, &m, sa), 0);
     put(&f);
 }
 
@@ -236,7 +238,7 @@ static void test_grade_from_altitude(void **state)
             const int32_t alt_mm = 200000 + (int32_t)((g_ecu.odometer_um / 1000U) / 50U);
             const pfe_msg_vds_t m = {{0U, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE},
                                      {0, PFE_SIG_NOT_AVAILABLE}, {alt_mm, PFE_SIG_VALID}};
-            assert_true(pfe_codec_encode_vds(&f, &m, GNSS) >= 0);
+            ASSERT_GE(pfe_codec_encode_vds(&f, &m, GNSS), 0);
             put(&f);
         }
         tick_bus(&b);
@@ -269,7 +271,7 @@ static void test_mass_from_cvw(void **state)
     const uint32_t rate_40t = own_fuel(&b).fuel_rate_nl_s.value;
     pfe_can_frame_t f;
     const pfe_msg_cvw_t m = {{8000U, PFE_SIG_VALID}, {12000U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_cvw(&f, &m, 0x27U) >= 0);
+    ASSERT_GE(pfe_codec_encode_cvw(&f, &m, 0x27U), 0);
     put(&f);
     const pfe_msg_own_fuel_t o = own_fuel(&b);
     assert_int_equal(o.fuel_rate_nl_s.state, PFE_SIG_VALID);
@@ -281,7 +283,7 @@ static void test_mass_from_cvw(void **state)
     assert_int_equal(is.vehicle_mass_kg.value, 12000);
     /* an implausible weight is rejected and changes nothing */
     const pfe_msg_cvw_t bad = {{8000U, PFE_SIG_VALID}, {500U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_cvw(&f, &bad, 0x27U) >= 0);
+    ASSERT_GE(pfe_codec_encode_cvw(&f, &bad, 0x27U), 0);
     put(&f);
     run(&b, 2U);
     assert_int_equal(g_ecu.own_calib.mass_kg, 12000);
@@ -301,7 +303,7 @@ static void test_does_not_shadow_the_engine(void **state)
         if ((k % 100U) == 50U) {
             pfe_can_frame_t f;
             const pfe_msg_hrlfc_t h = {{0U, PFE_SIG_NOT_AVAILABLE}, {123000U, PFE_SIG_VALID}};
-            assert_true(pfe_codec_encode_hrlfc(&f, &h, ENGINE) >= 0);
+            ASSERT_GE(pfe_codec_encode_hrlfc(&f, &h, ENGINE), 0);
             put(&f);
         }
         lfe1_out += (sent(PFE_PGN_LFE1) != NULL) ? 1U : 0U;
@@ -532,7 +534,7 @@ static void test_identifies_the_truck_from_the_engine(void **state)
     /* CVW's mass comes first; the identified aux power stays */
     pfe_can_frame_t cf;
     const pfe_msg_cvw_t w = {{8000U, PFE_SIG_VALID}, {15000U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_cvw(&cf, &w, 0x27U) >= 0);
+    ASSERT_GE(pfe_codec_encode_cvw(&cf, &w, 0x27U), 0);
     put(&cf);
     for (uint32_t k = 0U; k < 1500U; k++) { /* 15 s more of the engine's LFE1 */
         if (((g_now / 10000U) % 10U) == 0U) {
@@ -606,12 +608,12 @@ static void test_bad_frames_and_configurations(void **state)
     pfe_can_frame_t f;
     const pfe_msg_vds_t up = {{0U, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE},
                               {0, PFE_SIG_NOT_AVAILABLE}, {100000, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_vds(&f, &up, GNSS) >= 0);
+    ASSERT_GE(pfe_codec_encode_vds(&f, &up, GNSS), 0);
     put(&f);
     run(&b, 100U);
     const pfe_msg_vds_t na = {{0U, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE},
                               {0, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE}};
-    assert_true(pfe_codec_encode_vds(&f, &na, GNSS) >= 0);
+    ASSERT_GE(pfe_codec_encode_vds(&f, &na, GNSS), 0);
     put(&f);
     run(&b, 1U);
     assert_int_equal(g_ecu.in[PFE_IN_ALTITUDE].state, PFE_SIG_NOT_AVAILABLE);
@@ -631,7 +633,7 @@ static void test_bad_frames_and_configurations(void **state)
     for (uint32_t k = 0U; (k < 500U) && !hrlfc; k++) {
         if ((k % 100U) == 50U) {
             const pfe_msg_hrlfc_t h = {{0U, PFE_SIG_NOT_AVAILABLE}, {0U, PFE_SIG_NOT_AVAILABLE}};
-            assert_true(pfe_codec_encode_hrlfc(&f, &h, ENGINE) >= 0);
+            ASSERT_GE(pfe_codec_encode_hrlfc(&f, &h, ENGINE), 0);
             put(&f);
         }
         tick_bus(&b);

@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_can.h"
 #include "pfe_codec.h"
@@ -96,7 +98,7 @@ static pfe_msg_platoon_config_t platoon_config(uint32_t n, uint32_t position, ui
 static void send_platoon_config(const pfe_msg_platoon_config_t *m)
 {
     pfe_can_frame_t f;
-    assert_true(pfe_codec_encode_platoon_config(&f, m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_platoon_config(&f, m, OTHER_SA), 0);
     receive(&f);
 }
 
@@ -159,15 +161,15 @@ static void test_rejects_and_counts_bad_frames(void **state)
 
     /* CCVS1, SSI, PFE_PlatoonConfig and a Request one byte short. */
     const pfe_msg_ccvs1_t speed = {{25000, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ccvs1(&f, &speed, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_ccvs1(&f, &speed, OTHER_SA), 0);
     f.dlc = 7U;
     receive(&f);
     const pfe_msg_ssi_t ssi = {{0, PFE_SIG_VALID}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ssi(&f, &ssi, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_ssi(&f, &ssi, OTHER_SA), 0);
     f.dlc = 7U;
     receive(&f);
     const pfe_msg_platoon_config_t pc = platoon_config(2U, 1U, 10000U);
-    assert_true(pfe_codec_encode_platoon_config(&f, &pc, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_platoon_config(&f, &pc, OTHER_SA), 0);
     f.dlc = 7U;
     receive(&f);
     assert_int_equal(pfe_codec_encode_request(&f, PFE_PGN_LFE1, PFE_J1939_ADDR_GLOBAL, OTHER_SA),
