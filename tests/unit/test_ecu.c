@@ -22,38 +22,9 @@
 #include "pfe_fixed.h"
 #include "pfe_nvm.h"
 
+#include "ecu_harness.h"
+
 #define OTHER_SA 0x00U
-#define OUR_NAME 0x80A0000012345678ULL /* arbitrary address capable */
-
-static pfe_ecu_t g_ecu;
-static uint64_t g_now;
-static pfe_can_frame_t g_tx[PFE_ECU_TX_MAX];
-static uint32_t g_ntx;
-
-static pfe_ecu_config_t config(void)
-{
-    const pfe_ecu_config_t c = {
-        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
-        .name = OUR_NAME,
-        .save_interval_ms = 1000U,
-        .vehicle = &pfe_default_vehicle,
-        .env = &pfe_default_env,
-        .drag = &pfe_default_drag,
-        .default_vehicles = 1U,
-        .default_position = 0U,
-        .default_gap_mm = 10000U,
-        .cruise = &pfe_default_cruise,
-        .default_set_speed_mm_s = 25000,
-    };
-    return c;
-}
-
-static void start(const pfe_ecu_config_t *c, const pfe_nvm_state_t *restored, int slot)
-{
-    g_now = 1000000U;
-    memset(&g_ecu, 0xA5, sizeof g_ecu);
-    assert_int_equal(pfe_ecu_init(&g_ecu, c, restored, slot, g_now), PFE_OK);
-}
 
 static void send_speed(int32_t speed_mm_s, pfe_sig_state_t st)
 {
@@ -84,21 +55,11 @@ static void tick(bool speed, bool pitch)
     g_now += PFE_ECU_TICK_US;
 }
 
-static const pfe_can_frame_t *sent(uint32_t pgn)
-{
-    for (uint32_t k = 0U; k < g_ntx; k++) {
-        if (pfe_j1939_pgn(g_tx[k].id) == pgn) {
-            return &g_tx[k];
-        }
-    }
-    return NULL;
-}
-
 static void test_claims_address_then_keeps_schedule(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     tick(true, true);
     const pfe_can_frame_t *claim = sent(PFE_PGN_ADDRESS_CLAIMED);
     assert_non_null(claim);
@@ -175,7 +136,7 @@ static void test_fuel_rate_on_flat_road(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
     }
@@ -194,7 +155,7 @@ static void test_speed_timeout_within_three_periods_and_recovery(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
     }
@@ -232,7 +193,7 @@ static void test_grade_timeout_and_sender_error_values(void **state)
     /* With the flat road forbidden, a missing grade means no estimate. */
     pfe_ecu_config_t c = config();
     c.flat_grade_forbidden = true;
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
     }
@@ -270,7 +231,7 @@ static void test_requests(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 330U; k++) { /* HRLFC is sent 3 s after start, none other sending */
         tick(true, true);
     }
@@ -310,7 +271,7 @@ static void test_address_claim_conflicts(void **state)
 {
     (void)state;
     pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     tick(true, true);
     /* A higher NAME claims our address: we keep it and say so again. */
     claim_from_other(OUR_NAME + 1U);
@@ -328,7 +289,7 @@ static void test_address_claim_conflicts(void **state)
 
     /* Not arbitrary address capable: cannot claim, then silence. */
     c.name = OUR_NAME & ~(1ULL << 63);
-    start(&c, NULL, -1);
+    start(&c);
     tick(true, true);
     claim_from_other(0x0000000000000001ULL);
     tick(true, true);
@@ -346,7 +307,7 @@ static void test_counters_reach_the_status_message(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 30U; k++) {
         tick(true, true);
     }
@@ -417,7 +378,7 @@ static void test_prediction_over_a_preview(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
     }
@@ -511,7 +472,7 @@ static void test_platoon_config_switches_the_model(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     pfe_can_frame_t f;
     const pfe_msg_platoon_config_t m = {{5U, PFE_SIG_VALID}, {2U, PFE_SIG_VALID},
                                         {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
@@ -544,7 +505,7 @@ static void test_platoon_config_burst_last_wins(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 16U; k++) {
         pfe_can_frame_t f;
         const pfe_msg_platoon_config_t m = {{3U + (k % 4U), PFE_SIG_VALID}, {k % 3U, PFE_SIG_VALID},
@@ -602,7 +563,7 @@ static void test_platoon_build_that_fails_keeps_the_old_one(void **state)
     bad = pfe_default_vehicle;
     bad.mass_kg = 0U;
     c.vehicle_at[5] = &bad;
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
     }
@@ -629,7 +590,7 @@ static void test_mass_during_a_build(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     pfe_can_frame_t f;
     const pfe_msg_platoon_config_t m = {{20U, PFE_SIG_VALID}, {3U, PFE_SIG_VALID},
                                         {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
@@ -666,7 +627,7 @@ static void test_nvm_write_failure_is_retried(void **state)
     (void)state;
     const pfe_ecu_config_t c = config(); /* saves every 1 s */
     const pfe_nvm_state_t restored = {7U, 5000U, 6000U, 0U, 0U, 0U};
-    start(&c, &restored, 1);
+    start_restored(&c, &restored, 1);
     for (uint32_t k = 0U; (k < 200U) && !pfe_ecu_nvm_due(&g_ecu); k++) {
         tick(true, true);
     }
@@ -701,7 +662,7 @@ static void test_full_queue_spreads_over_two_ticks(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < PFE_ECU_RX_QUEUE_LEN; k++) {
         send_pitch(0);
     }
@@ -732,7 +693,7 @@ static void test_resets_never_lose_more_than_one_save_interval(void **state)
         const int slot = pfe_nvm_pick(s0, s1, &restored);
         ASSERT_GE(restored.own_fuel_ul, last_restored); /* never backwards */
         last_restored = restored.own_fuel_ul;
-        start(&c, &restored, slot);
+        start_restored(&c, &restored, slot);
         assert_int_equal(pfe_ecu_own_fuel_ul(&g_ecu), restored.own_fuel_ul);
         rng = (rng * 1103515245U) + 12345U;
         const uint32_t ticks = 1U + ((rng >> 8) % 300U); /* up to 3 s of driving */

@@ -21,40 +21,10 @@
 #include "pfe_ecu.h"
 #include "pfe_fixed.h"
 
+#include "ecu_harness.h"
+
 #define OTHER_SA 0x00U
-#define OUR_NAME 0x80A0000012345678ULL   /* arbitrary address capable */
 #define FIXED_NAME 0x00A0000012345678ULL /* not arbitrary address capable */
-#define START_US 1000000U
-
-static pfe_ecu_t g_ecu;
-static uint64_t g_now;
-static pfe_can_frame_t g_tx[PFE_ECU_TX_MAX];
-static uint32_t g_ntx;
-
-static pfe_ecu_config_t config(void)
-{
-    const pfe_ecu_config_t c = {
-        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
-        .name = OUR_NAME,
-        .save_interval_ms = 1000U,
-        .vehicle = &pfe_default_vehicle,
-        .env = &pfe_default_env,
-        .drag = &pfe_default_drag,
-        .default_vehicles = 1U,
-        .default_position = 0U,
-        .default_gap_mm = 10000U,
-        .cruise = &pfe_default_cruise,
-        .default_set_speed_mm_s = 25000,
-    };
-    return c;
-}
-
-static void start(const pfe_ecu_config_t *c)
-{
-    g_now = START_US;
-    memset(&g_ecu, 0xA5, sizeof g_ecu);
-    assert_int_equal(pfe_ecu_init(&g_ecu, c, NULL, -1, g_now), PFE_OK);
-}
 
 static void tick(void)
 {
@@ -70,21 +40,6 @@ static void start_claimed(const pfe_ecu_config_t *c)
         tick();
     }
     assert_int_equal(g_ecu.addr_state, PFE_ECU_ADDR_CLAIMED);
-}
-
-static void receive(const pfe_can_frame_t *f)
-{
-    pfe_ecu_receive(&g_ecu, f, g_now);
-}
-
-static const pfe_can_frame_t *sent(uint32_t pgn)
-{
-    for (uint32_t k = 0U; k < g_ntx; k++) {
-        if (pfe_j1939_pgn(g_tx[k].id) == pgn) {
-            return &g_tx[k];
-        }
-    }
-    return NULL;
 }
 
 static pfe_msg_platoon_config_t platoon_config(uint32_t n, uint32_t position, uint32_t gap_mm)
