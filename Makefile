@@ -32,7 +32,7 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
 .PHONY: all tools deps run test test-host test-m4 firmware bench bench-figures test-bench-check help clean check-image \
-        check-selfcheck check-replay e2e-test bus-fault-test
+        check-selfcheck check-replay e2e-test bus-fault-test check-asserts
 .DEFAULT_GOAL := all
 
 all: tools
@@ -95,7 +95,10 @@ $(HOST)/road2c: sim_host/road2c.c sim_host/road_csv.c sim_host/road_csv.h | $(DE
 # Unit tests: the firmware plus the test backend (hal/fake), nothing else.
 UNIT_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem.c
 
-$(HOSTSAN)/unit_%: tests/unit/%.c $(UNIT_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+# Headers of the tests themselves (value-printing asserts, the ECU harness).
+TEST_HDR := tests/test_assert.h $(sort $(wildcard tests/unit/*.h))
+
+$(HOSTSAN)/unit_%: tests/unit/%.c $(UNIT_SRC) $(FW_HDR) $(HAL_HDR) $(TEST_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(UNIT_SRC) -lcmocka
 
@@ -142,7 +145,18 @@ HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_ac
                   $(HOSTSAN)/test_hal_fake $(HOSTSAN)/test_hal_replay $(HOSTSAN)/test_predict \
                   $(HOSTSAN)/test_identify_ref
 
-test-host: $(HOST_TEST_BINS)
+# No assert compares without printing the values (scripts/check_asserts.py
+# over tests/); the check shown to fail on planted comparisons and the
+# asserts of tests/test_assert.h shown to print them (tests/asserts/).
+$(HOSTSAN)/test_assert_demo: tests/asserts/test_assert_demo.c tests/test_assert.h | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -o $@ $< -lcmocka
+
+check-asserts: $(HOSTSAN)/test_assert_demo
+	@echo "== host: no bare comparison in an assert"; python3 scripts/check_asserts.py tests
+	@sh tests/asserts/check_asserts_test.sh $(HOSTSAN)/test_assert_demo
+
+test-host: $(HOST_TEST_BINS) check-asserts
 	@set -e; for t in $(UNIT_TESTS); do echo "== host unit: $$t"; $(HOSTSAN)/unit_$$t; done
 	@echo "== host: test_accuracy"; $(HOSTSAN)/test_accuracy $(ROADS)
 	@echo "== host: test_predict"; $(HOSTSAN)/test_predict $(ROADS)
