@@ -205,7 +205,7 @@ static void test_route_generator(void **state)
         }
         ASSERT_GE(lo, -3000);
         ASSERT_LE(hi, 4000);
-        ASSERT_GE(longest_up_m, 600U);                    /* the forced upgrade */
+        ASSERT_GE(longest_up_m, 600U);                        /* the forced upgrade */
         for (size_t k = 0U; k < 100U; k++) {
             assert_int_equal(a[k], 0);                         /* 1 km flat lead-in */
         }

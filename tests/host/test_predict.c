@@ -423,8 +423,8 @@ static void test_flat_one_truck_literals(void **state)
     (void)run_to_end();
     const pfe_predict_result_t *r = pfe_predict_result(&g_pred);
     assert_true(r->valid);
-    ASSERT_LT(labs((long)r->time_ms - 480000L), 100L);  /* 480.0 s */
-    ASSERT_LT(labs((long)r->fuel_ul - 4463000L), 4500L); /* 4.463 L within 0.1 % */
+    ASSERT_LT(labs((long)r->time_ms - 480000L), 100L);     /* 480.0 s */
+    ASSERT_LT(labs((long)r->fuel_ul - 4463000L), 4500L);   /* 4.463 L within 0.1 % */
     /* The bounds' runs are the nominal one: the bounds differ from it by
      * the runs' discretisation only, and are widened to the prediction. */
     ASSERT_LE(r->fuel_lower_ul, r->fuel_ul);

@@ -434,7 +434,7 @@ static void test_row_limit(void **state)
     load_ok(path, &road);
     assert_int_equal(road.n_samples, 1000000);
     ASSERT_EQ(road.spacing_m, 1.0);
-    ASSERT_EQ(road.grade_percent[999999], 0.0);   /* 999999 % 3 */
+    ASSERT_EQ(road.grade_percent[999999], 0.0);       /* 999999 % 3 */
     ASSERT_EQ(road.grade_percent[999998], 2.0);
     road_profile_free(&road);
 

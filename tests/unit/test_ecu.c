@@ -691,7 +691,7 @@ static void test_resets_never_lose_more_than_one_save_interval(void **state)
         assert_int_equal(hal_nvm_read(&nvm, 1U, s1), 0);
         pfe_nvm_state_t restored;
         const int slot = pfe_nvm_pick(s0, s1, &restored);
-        ASSERT_GE(restored.own_fuel_ul, last_restored); /* never backwards */
+        ASSERT_GE(restored.own_fuel_ul, last_restored);     /* never backwards */
         last_restored = restored.own_fuel_ul;
         start_restored(&c, &restored, slot);
         assert_int_equal(pfe_ecu_own_fuel_ul(&g_ecu), restored.own_fuel_ul);

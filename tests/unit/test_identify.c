@@ -632,7 +632,7 @@ static void test_steep_grades_exact(void **state)
     (void)state;
     pfe_identify_t *id = fresh();
     steep_grades(id, 25000.0, 12000U, -1.0);
-    ASSERT_GT(id->sxx, (int64_t)UINT32_MAX); /* internals: the path exercised */
+    ASSERT_GT(id->sxx, (int64_t)UINT32_MAX);    /* internals: the path exercised */
     const int64_t e = err_bp(pfe_identify_mass_kg(id), 25000.0);
     print_message("steep grades, no noise: %u kg for 25 t (%+.2f %%), aux %u W\n",
                   (unsigned)pfe_identify_mass_kg(id), (double)e / 100.0,

@@ -202,7 +202,7 @@ static void test_n_identical_trucks_without_slipstream_burn_n_times_one(void **s
     (void)state;
     const uint64_t one = hilly_fuel(1U);
     const uint64_t five = hilly_fuel(5U);
-    ASSERT_GT(one, 1000000000U); /* more than 1 L */
+    ASSERT_GT(one, 1000000000U);    /* more than 1 L */
     /* Identical up to rounding: the force and step computations see speed in
      * whole mm/s (2.4e-5 of 21 m/s at most), so within 3e-5 of 5 x one truck. */
     const uint64_t expect = 5U * one;
