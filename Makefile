@@ -131,6 +131,11 @@ $(HOSTSAN)/test_hal_fake: tests/hal/test_hal_fake.c tests/hal/hal_conformance.c 
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
 
+# The ECU's main loop on the test backend: what a late pass takes.
+$(HOSTSAN)/test_ecu_loop: tests/hal/test_ecu_loop.c hal/hal_ecu_loop.c hal/fake/hal_fake.c hal/hal_can_mem.c $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
+
 # ... and on the replay backend, with the backend's own tests.
 $(HOSTSAN)/test_hal_replay: tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem.c $(HAL_HDR) tests/replay/log_vectors.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -142,7 +147,7 @@ $(HOSTSAN)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
 
 HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_accuracy \
                   $(HOSTSAN)/test_road_csv $(HOSTSAN)/roadgen $(HOSTSAN)/test_dbc_codec \
-                  $(HOSTSAN)/test_hal_fake $(HOSTSAN)/test_hal_replay $(HOSTSAN)/test_predict \
+                  $(HOSTSAN)/test_hal_fake $(HOSTSAN)/test_hal_replay $(HOSTSAN)/test_ecu_loop $(HOSTSAN)/test_predict \
                   $(HOSTSAN)/test_identify_ref
 
 # No assert compares without printing the values (scripts/check_asserts.py
@@ -165,6 +170,7 @@ test-host: $(HOST_TEST_BINS) check-asserts
 	@echo "== host: test_dbc_codec"; $(HOSTSAN)/test_dbc_codec can_dbc/pfe.dbc
 	@echo "== host: HAL conformance on hal/fake"; $(HOSTSAN)/test_hal_fake
 	@echo "== host: HAL conformance on hal/replay"; $(HOSTSAN)/test_hal_replay
+	@echo "== host: the ECU loop on hal/fake"; $(HOSTSAN)/test_ecu_loop
 
 # ---------------------------------------------------------------- Cortex-M4 (QEMU mps2-an386)
 
