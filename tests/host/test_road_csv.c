@@ -651,7 +651,9 @@ static void regenerate_and_compare(const char *name)
     }
     int status = 0;
     assert_int_equal(waitpid(pid, &status, 0), pid);
-    assert_true(WIFEXITED(status));
+    if (!WIFEXITED(status)) {
+        fail_msg("%s did not exit (wait status 0x%x)", g_roadgen, (unsigned)status);
+    }
     assert_int_equal(WEXITSTATUS(status), 0);
 
     size_t len_new = 0u;
