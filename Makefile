@@ -304,11 +304,11 @@ $(FAULTS_PAYLOAD)/bus_faults.sh: tests/e2e/bus_faults.sh
 	cp $< $@
 
 bus-fault-test: $(addprefix $(FAULTS_PAYLOAD)/,pfe_ecu pfe_replay pfe_decode pfe.dbc drive.log bus_faults.sh)
-	$(VCAN_VM) --time --timeout 300 --payload $(abspath $(FAULTS_PAYLOAD)) -- \
+	$(VCAN_VM) --time --timeout 900 --payload $(abspath $(FAULTS_PAYLOAD)) -- \
 	    sh $(abspath $(FAULTS_PAYLOAD))/bus_faults.sh
 
 e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log faults.log ecu_vcan.sh)
-	$(VCAN_VM) --time --timeout 500 --payload $(abspath $(E2E_PAYLOAD)) -- \
+	$(VCAN_VM) --time --timeout 1200 --payload $(abspath $(E2E_PAYLOAD)) -- \
 	    sh $(abspath $(E2E_PAYLOAD))/ecu_vcan.sh
 
 # One log through the firmware on the host and in the Cortex-M4 image, in
