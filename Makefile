@@ -32,7 +32,7 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
 .PHONY: all tools deps run test test-host test-m4 firmware bench bench-figures test-bench-check help clean check-image \
-        check-selfcheck check-replay e2e-test bus-fault-test
+        check-selfcheck check-replay e2e-test bus-fault-test check-asserts
 .DEFAULT_GOAL := all
 
 all: tools
@@ -95,7 +95,10 @@ $(HOST)/road2c: sim_host/road2c.c sim_host/road_csv.c sim_host/road_csv.h | $(DE
 # Unit tests: the firmware plus the test backend (hal/fake), nothing else.
 UNIT_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem.c
 
-$(HOSTSAN)/unit_%: tests/unit/%.c $(UNIT_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+# Headers of the tests themselves (value-printing asserts, the ECU harness).
+TEST_HDR := tests/test_assert.h $(sort $(wildcard tests/unit/*.h))
+
+$(HOSTSAN)/unit_%: tests/unit/%.c $(UNIT_SRC) $(FW_HDR) $(HAL_HDR) $(TEST_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(UNIT_SRC) -lcmocka
 
@@ -147,7 +150,18 @@ HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_ac
                   $(HOSTSAN)/test_hal_fake $(HOSTSAN)/test_hal_replay $(HOSTSAN)/test_ecu_loop $(HOSTSAN)/test_predict \
                   $(HOSTSAN)/test_identify_ref
 
-test-host: $(HOST_TEST_BINS)
+# No assert compares without printing the values (scripts/check_asserts.py
+# over tests/); the check shown to fail on planted comparisons and the
+# asserts of tests/test_assert.h shown to print them (tests/asserts/).
+$(HOSTSAN)/test_assert_demo: tests/asserts/test_assert_demo.c tests/test_assert.h | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(SAN_CFLAGS) -o $@ $< -lcmocka
+
+check-asserts: $(HOSTSAN)/test_assert_demo
+	@echo "== host: no bare comparison in an assert"; python3 scripts/check_asserts.py tests
+	@sh tests/asserts/check_asserts_test.sh $(HOSTSAN)/test_assert_demo
+
+test-host: $(HOST_TEST_BINS) check-asserts
 	@set -e; for t in $(UNIT_TESTS); do echo "== host unit: $$t"; $(HOSTSAN)/unit_$$t; done
 	@echo "== host: test_accuracy"; $(HOSTSAN)/test_accuracy $(ROADS)
 	@echo "== host: test_predict"; $(HOSTSAN)/test_predict $(ROADS)
@@ -290,11 +304,11 @@ $(FAULTS_PAYLOAD)/bus_faults.sh: tests/e2e/bus_faults.sh
 	cp $< $@
 
 bus-fault-test: $(addprefix $(FAULTS_PAYLOAD)/,pfe_ecu pfe_replay pfe_decode pfe.dbc drive.log bus_faults.sh)
-	$(VCAN_VM) --time --timeout 300 --payload $(abspath $(FAULTS_PAYLOAD)) -- \
+	$(VCAN_VM) --time --timeout 900 --payload $(abspath $(FAULTS_PAYLOAD)) -- \
 	    sh $(abspath $(FAULTS_PAYLOAD))/bus_faults.sh
 
 e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log faults.log ecu_vcan.sh)
-	$(VCAN_VM) --time --timeout 500 --payload $(abspath $(E2E_PAYLOAD)) -- \
+	$(VCAN_VM) --time --timeout 1200 --payload $(abspath $(E2E_PAYLOAD)) -- \
 	    sh $(abspath $(E2E_PAYLOAD))/ecu_vcan.sh
 
 # One log through the firmware on the host and in the Cortex-M4 image, in
