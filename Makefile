@@ -14,19 +14,22 @@ BUILD ?= build
 HOST_CC ?= gcc
 HOST := $(BUILD)/host
 HOSTSAN := $(BUILD)/host-san
-ROADS := sim_host/roads
+ROADS := sim_host/data/roads
 ROAD_NAMES := flat uphill hilly
 
 WARN := -std=c11 -Wall -Wextra -Werror -Wconversion -Wsign-conversion -Wshadow \
         -Wdouble-promotion -Wstrict-prototypes -Wundef -Wcast-qual -Wpointer-arith
+# Project headers by their path: "firmware/x.h", "hal/x.h", and the host
+# tools' "lib/x.h", "ref/x.h" (sim_host/); tests also name firmware headers alone.
+HOST_INC := -I. -Isim_host -Ifirmware
 SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-HOST_CFLAGS := $(WARN) -O2 -g
-SAN_CFLAGS := $(WARN) -O1 -g $(SAN)
+HOST_CFLAGS := $(WARN) $(HOST_INC) -O2 -g
+SAN_CFLAGS := $(WARN) $(HOST_INC) -O1 -g $(SAN)
 
 FW_SRC := $(sort $(wildcard firmware/*.c))
 FW_HDR := $(sort $(wildcard firmware/*.h))
-REF_SRC := sim_host/ref_model.c sim_host/sim_compare.c sim_host/road_csv.c sim_host/drive_trace.c
-SIM_HDR := $(sort $(wildcard sim_host/*.h))
+REF_SRC := sim_host/ref/ref_model.c sim_host/ref/sim_compare.c sim_host/lib/road_csv.c sim_host/ref/drive_trace.c
+SIM_HDR := $(sort $(wildcard sim_host/*/*.h))
 UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
 
 DEPS_STAMP := $(BUILD)/.deps-ok
@@ -57,15 +60,15 @@ TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu $(HO
          $(HOST)/routegen
 tools: $(TOOLS)
 
-$(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+$(HOST)/platoon_sim: sim_host/tools/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/tools/platoon_sim.c $(FW_SRC) $(REF_SRC) -lm
 
 # The module as a Linux process on SocketCAN (hal/socketcan, hal/posix).
 ECU_LOOP_SRC := hal/hal_ecu_loop.c
 # The truck calibration file (--calib) of the host tools that run the model.
-TRUCK_CAL_SRC := sim_host/truck_cal.c
-ECU_HOST_SRC := sim_host/ecu_main.c $(ECU_LOOP_SRC) hal/socketcan/hal_socketcan.c \
+TRUCK_CAL_SRC := sim_host/lib/truck_cal.c
+ECU_HOST_SRC := sim_host/tools/pfe_ecu.c $(ECU_LOOP_SRC) hal/socketcan/hal_socketcan.c \
     hal/posix/hal_nvm_file.c hal/posix/hal_time_posix.c $(TRUCK_CAL_SRC)
 HAL_HDR := $(sort $(wildcard hal/*.h hal/*/*.h))
 $(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(DEPS_STAMP)
@@ -75,20 +78,20 @@ $(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(D
 # The same firmware over a log in logical time (hal/replay); its twin on the
 # Cortex-M4 is $(M4_OUT)/pfe_ecu_mps2.elf.
 ECU_REPLAY_SRC := $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/replay/hal_replay_ecu.c
-# The host reads the log through sim_host/canlog.c (every form), the image
+# The host reads the log through sim_host/lib/canlog.c (every form), the image
 # through hal/replay's own parser.
-REPLAY_SOURCE_SRC := sim_host/replay_source.c sim_host/canlog.c
-$(HOST)/pfe_ecu_replay: sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(REPLAY_SOURCE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+REPLAY_SOURCE_SRC := sim_host/lib/replay_source.c sim_host/lib/canlog.c
+$(HOST)/pfe_ecu_replay: sim_host/tools/pfe_ecu_replay.c $(ECU_REPLAY_SRC) $(REPLAY_SOURCE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(REPLAY_SOURCE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/pfe_ecu_replay.c $(ECU_REPLAY_SRC) $(REPLAY_SOURCE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC)
 
-$(HOST)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
+$(HOST)/roadgen: sim_host/tools/roadgen.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -o $@ $< -lm
 
-$(HOST)/road2c: sim_host/road2c.c sim_host/road_csv.c sim_host/road_csv.h | $(DEPS_STAMP)
+$(HOST)/road2c: sim_host/tools/road2c.c sim_host/lib/road_csv.c sim_host/lib/road_csv.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Isim_host -o $@ sim_host/road2c.c sim_host/road_csv.c -lm
+	$(HOST_CC) $(HOST_CFLAGS) -Isim_host -o $@ sim_host/tools/road2c.c sim_host/lib/road_csv.c -lm
 
 # ---------------------------------------------------------------- host tests (ASan, UBSan)
 
@@ -103,9 +106,9 @@ $(HOSTSAN)/test_accuracy: tests/host/test_accuracy.c $(FW_SRC) $(REF_SRC) $(FW_H
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(FW_SRC) $(REF_SRC) -lcmocka -lm
 
-$(HOSTSAN)/test_road_csv: tests/host/test_road_csv.c sim_host/road_csv.c sim_host/road_csv.h | $(DEPS_STAMP)
+$(HOSTSAN)/test_road_csv: tests/host/test_road_csv.c sim_host/lib/road_csv.c sim_host/lib/road_csv.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Isim_host -o $@ $< sim_host/road_csv.c -lcmocka -lm
+	$(HOST_CC) $(SAN_CFLAGS) -Isim_host -o $@ $< sim_host/lib/road_csv.c -lcmocka -lm
 
 # The module's prediction over a preview against the double-precision model.
 $(HOSTSAN)/test_predict: tests/host/test_predict.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
@@ -113,15 +116,15 @@ $(HOSTSAN)/test_predict: tests/host/test_predict.c $(FW_SRC) $(REF_SRC) $(FW_HDR
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(FW_SRC) $(REF_SRC) -lcmocka -lm
 
 # The identification against its double-precision reference and the
-# reference model's truth (sim_host/identify_ref).
-$(HOSTSAN)/test_identify_ref: tests/host/test_identify_ref.c sim_host/identify_ref.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+# reference model's truth (sim_host/ref/identify_ref).
+$(HOSTSAN)/test_identify_ref: tests/host/test_identify_ref.c sim_host/ref/identify_ref.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/identify_ref.c $(FW_SRC) $(REF_SRC) -lcmocka -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/ref/identify_ref.c $(FW_SRC) $(REF_SRC) -lcmocka -lm
 
 # Every codec signal checked against can_dbc/pfe.dbc, and the other way round.
-$(HOSTSAN)/test_dbc_codec: tests/host/test_dbc_codec.c sim_host/dbc.c sim_host/dbc.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/test_dbc_codec: tests/host/test_dbc_codec.c sim_host/lib/dbc.c sim_host/lib/dbc.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/dbc.c $(FW_SRC) -lcmocka -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/lib/dbc.c $(FW_SRC) -lcmocka -lm
 
 # The HAL conformance suite on the test backend (on SocketCAN: mk/vcan.mk).
 $(HOSTSAN)/test_hal_fake: tests/hal/test_hal_fake.c tests/hal/hal_conformance.c hal/fake/hal_fake.c hal/hal_can_mem.c $(HAL_HDR) | $(DEPS_STAMP)
@@ -133,7 +136,7 @@ $(HOSTSAN)/test_hal_replay: tests/hal/test_hal_replay.c tests/hal/hal_conformanc
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
 
-$(HOSTSAN)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
+$(HOSTSAN)/roadgen: sim_host/tools/roadgen.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -o $@ $< -lm
 
@@ -219,9 +222,9 @@ test-m4: $(DEPS_STAMP) $(addprefix $(M4_OUT)/unit_,$(addsuffix .elf,$(UNIT_TESTS
 	@echo "== Cortex-M4: HAL conformance on hal/replay"; $(M4_RUN) $(M4_OUT)/test_hal_replay.elf
 
 # Same inputs, bit-identical outputs on the host and on the Cortex-M4.
-$(HOST)/selfcheck: sim_host/selfcheck.c sim_host/road_csv.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOST)/selfcheck: sim_host/tools/selfcheck.c sim_host/lib/road_csv.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/selfcheck.c sim_host/road_csv.c $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/tools/selfcheck.c sim_host/lib/road_csv.c $(FW_SRC) -lm
 
 check-selfcheck: $(HOST)/selfcheck $(FIRMWARE_ELF)
 	$(HOST)/selfcheck $(ROADS)/hilly.csv > $(BUILD)/selfcheck_host.txt
@@ -240,13 +243,13 @@ E2E_PAYLOAD := $(BUILD)/e2e/payload
 E2E_STATIC := -static -O2
 $(E2E_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
-$(E2E_PAYLOAD)/ecu_check: sim_host/ecu_check.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+	$(HOST_CC) $(WARN) $(HOST_INC) $(E2E_STATIC) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
+$(E2E_PAYLOAD)/ecu_check: sim_host/tools/ecu_check.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
-$(HOST)/drivegen: sim_host/drivegen.c sim_host/drive_trace.c $(REF_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+	$(HOST_CC) $(WARN) $(HOST_INC) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/tools/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
+$(HOST)/drivegen: sim_host/tools/drivegen.c sim_host/ref/drive_trace.c $(REF_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/drivegen.c $(REF_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/drivegen.c $(REF_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) -lm
 $(E2E_PAYLOAD)/drive.log: $(HOST)/drivegen Makefile
 	@mkdir -p $(@D)
 	$(HOST)/drivegen --segment 600:0 --segment 50:0.5 --segment 50:1 --segment 50:1.5 \
@@ -255,9 +258,9 @@ $(E2E_PAYLOAD)/ecu_vcan.sh: tests/e2e/ecu_vcan.sh
 	@mkdir -p $(@D)
 	cp $< $@
 
-$(E2E_PAYLOAD)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+$(E2E_PAYLOAD)/pfe_faults: sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
+	$(HOST_CC) $(WARN) $(HOST_INC) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
 $(E2E_PAYLOAD)/faults.log: $(HOST)/pfe_faults $(E2E_PAYLOAD)/drive.log
 	$(HOST)/pfe_faults inject $(E2E_PAYLOAD)/drive.log $@
 
@@ -270,9 +273,9 @@ $(FAULTS_PAYLOAD)/pfe_ecu: $(E2E_PAYLOAD)/pfe_ecu
 $(FAULTS_PAYLOAD)/pfe_replay: $(REPLAY_PAYLOAD)/pfe_replay
 	@mkdir -p $(@D)
 	cp $< $@
-$(FAULTS_PAYLOAD)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) sim_host/dbc.c sim_host/dbc.h | $(DEPS_STAMP)
+$(FAULTS_PAYLOAD)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) sim_host/lib/dbc.c sim_host/lib/dbc.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(E2E_STATIC) -Wno-maybe-uninitialized -I. -o $@ $(DECODE_SRC) sim_host/dbc.c -lm
+	$(HOST_CC) $(WARN) $(HOST_INC) $(E2E_STATIC) -Wno-maybe-uninitialized -I. -o $@ $(DECODE_SRC) sim_host/lib/dbc.c -lm
 $(FAULTS_PAYLOAD)/pfe.dbc: can_dbc/pfe.dbc
 	@mkdir -p $(@D)
 	cp $< $@
@@ -293,12 +296,12 @@ e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log fau
 
 # One log through the firmware on the host and in the Cortex-M4 image, in
 # the log's time: identical records; then judged (tests/replay/host_vs_m4.sh).
-$(HOST)/ecu_check: sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+$(HOST)/ecu_check: sim_host/tools/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
-$(HOST)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
+$(HOST)/pfe_faults: sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
 
 check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_OUT)/pfe_ecu_mps2.elf \
         $(E2E_PAYLOAD)/drive.log $(BUILD)/logs/hilly.log

@@ -17,10 +17,10 @@
 # NAME and the inputs of every crash found, replayed first, in
 # tests/fuzz/regress/NAME:
 #   ecu      frame sequences and time steps into pfe_ecu (firmware/)
-#   canlog   sim_host/canlog.c: candump log, candump printed, Vector ASC
+#   canlog   sim_host/lib/canlog.c: candump log, candump printed, Vector ASC
 #   replay   hal/replay/hal_replay.c: the replay bus's candump parser
-#   capture  sim_host/capture.c: the capture reader
-#   dbc      sim_host/dbc.c, seeded with can_dbc/pfe.dbc
+#   capture  sim_host/lib/capture.c: the capture reader
+#   dbc      sim_host/lib/dbc.c, seeded with can_dbc/pfe.dbc
 #   nvm      firmware/pfe_nvm.c: pfe_nvm_decode, pfe_nvm_pick, and the ECU
 #            started from the record picked
 #
@@ -37,7 +37,7 @@ FUZZ_TARGETS ?= ecu canlog replay capture dbc nvm
 FUZZ_CC ?= clang
 FUZZ_OUT ?= $(BUILD)/fuzz
 FUZZ_PACKAGES := clang libclang-rt-14-dev
-FUZZ_CFLAGS := $(WARN) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+FUZZ_CFLAGS := $(WARN) $(HOST_INC) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
                -fno-omit-frame-pointer
 FUZZ_DEPS := $(FUZZ_OUT)/.deps-ok
 FUZZ_HDR := tests/fuzz/fuzz_check.h
@@ -55,19 +55,19 @@ $(FUZZ_OUT)/fuzz_ecu: tests/fuzz/fuzz_ecu.c $(FUZZ_HDR) $(FW_SRC) $(FW_HDR) | $(
 $(FUZZ_OUT)/fuzz_nvm: tests/fuzz/fuzz_nvm.c $(FUZZ_HDR) $(FW_SRC) $(FW_HDR) | $(FUZZ_DEPS)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< $(FW_SRC)
 
-$(FUZZ_OUT)/fuzz_canlog: tests/fuzz/fuzz_canlog.c $(FUZZ_HDR) sim_host/canlog.c sim_host/canlog.h | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/canlog.c
+$(FUZZ_OUT)/fuzz_canlog: tests/fuzz/fuzz_canlog.c $(FUZZ_HDR) sim_host/lib/canlog.c sim_host/lib/canlog.h | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/lib/canlog.c
 
 $(FUZZ_OUT)/fuzz_replay: tests/fuzz/fuzz_replay.c $(FUZZ_HDR) hal/replay/hal_replay.c hal/hal_can_mem.c \
         $(HAL_HDR) $(FW_HDR) | $(FUZZ_DEPS)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< hal/replay/hal_replay.c hal/hal_can_mem.c
 
-$(FUZZ_OUT)/fuzz_capture: tests/fuzz/fuzz_capture.c $(FUZZ_HDR) sim_host/capture.c sim_host/capture.h \
+$(FUZZ_OUT)/fuzz_capture: tests/fuzz/fuzz_capture.c $(FUZZ_HDR) sim_host/lib/capture.c sim_host/lib/capture.h \
         $(FW_HDR) | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/capture.c sim_host/canlog.c
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/lib/capture.c sim_host/lib/canlog.c
 
-$(FUZZ_OUT)/fuzz_dbc: tests/fuzz/fuzz_dbc.c $(FUZZ_HDR) sim_host/dbc.c sim_host/dbc.h | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/dbc.c -lm
+$(FUZZ_OUT)/fuzz_dbc: tests/fuzz/fuzz_dbc.c $(FUZZ_HDR) sim_host/lib/dbc.c sim_host/lib/dbc.h | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/lib/dbc.c -lm
 
 # The DBC's seed is the DBC itself, as it is now (16 KB: inputs up to 20 KB).
 FUZZ_SEED_DIRS_dbc := $(FUZZ_OUT)/seed/dbc
@@ -93,8 +93,8 @@ fuzz: fuzz-build
 fuzz-smoke: fuzz-build
 	$(call fuzz_run,$(FUZZ_SMOKE_SECONDS))
 
-$(FUZZ_OUT)/ecu_seed: tests/fuzz/ecu_seed.c sim_host/capture.c sim_host/capture.h | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(WARN) -O1 -I. -Ifirmware -Isim_host -o $@ $< sim_host/capture.c sim_host/canlog.c
+$(FUZZ_OUT)/ecu_seed: tests/fuzz/ecu_seed.c sim_host/lib/capture.c sim_host/lib/capture.h | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(WARN) $(HOST_INC) -O1 -I. -Ifirmware -Isim_host -o $@ $< sim_host/lib/capture.c sim_host/lib/canlog.c
 
 fuzz-seeds: $(FUZZ_OUT)/ecu_seed $(BUILD)/e2e/payload/drive.log
 	sh tests/fuzz/make_seeds.sh $(BUILD)/e2e/payload/drive.log $(FUZZ_OUT)/ecu_seed

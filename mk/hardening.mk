@@ -83,11 +83,11 @@ COV_BRANCH_MIN ?= 92
 
 # Force-inlined helpers (PFE_ALWAYS_INLINE) compiled as ordinary functions:
 # see firmware/pfe_fixed.h.
-COV_CFLAGS := $(WARN) -O0 -g --coverage -DPFE_NO_FORCE_INLINE
+COV_CFLAGS := $(WARN) $(HOST_INC) -O0 -g --coverage -DPFE_NO_FORCE_INLINE
 COV_OBJ := $(COV_OUT)/obj
 # The firmware and the sources every test links with it, compiled once: the
 # counts of all the tests add up in one .gcda per source.
-COV_LIB_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem.c $(REF_SRC) sim_host/dbc.c
+COV_LIB_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem.c $(REF_SRC) sim_host/lib/dbc.c
 COV_LIB_OBJ := $(patsubst %.c,$(COV_OBJ)/%.o,$(COV_LIB_SRC))
 COV_TESTS := $(addprefix unit_,$(UNIT_TESTS)) test_accuracy test_predict test_dbc_codec
 COV_TEST_OBJ := $(patsubst %,$(COV_OBJ)/tests/unit/%.o,$(UNIT_TESTS)) \

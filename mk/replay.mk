@@ -35,12 +35,12 @@ REPLAY_BENCH_FRAMES ?= 1000000
 REPLAY_BENCH_RUNS ?= 5
 REPLAY_VM_TIMEOUT_S ?= 600
 
-CANLOG_SRC := sim_host/canlog.c
-CANLOG_HDR := sim_host/canlog.h
-REPLAY_SRC := sim_host/pfe_replay.c $(CANLOG_SRC) sim_host/lateness.c hal/socketcan/hal_socketcan.c
-REPLAY_HDR := $(CANLOG_HDR) sim_host/lateness.h hal/socketcan/hal_socketcan.h hal/hal_can.h
-DECODE_SRC := sim_host/pfe_decode.c $(CANLOG_SRC)
-DECODE_HDR := $(CANLOG_HDR) sim_host/dbc.h
+CANLOG_SRC := sim_host/lib/canlog.c
+CANLOG_HDR := sim_host/lib/canlog.h
+REPLAY_SRC := sim_host/tools/pfe_replay.c $(CANLOG_SRC) sim_host/lib/lateness.c hal/socketcan/hal_socketcan.c
+REPLAY_HDR := $(CANLOG_HDR) sim_host/lib/lateness.h hal/socketcan/hal_socketcan.h hal/hal_can.h
+DECODE_SRC := sim_host/tools/pfe_decode.c $(CANLOG_SRC)
+DECODE_HDR := $(CANLOG_HDR) sim_host/lib/dbc.h
 
 .PHONY: replay-test replay-vcan-test replay-bench
 
@@ -50,10 +50,10 @@ $(HOST)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ $(REPLAY_SRC)
 
-# sim_host/dbc.c draws a false maybe-uninitialized warning at -O2 without the
+# sim_host/lib/dbc.c draws a false maybe-uninitialized warning at -O2 without the
 # sanitizers (expect_u32's v, written by parse_u64_token whenever it returns
 # 0): that one warning is off for this object.
-$(REPLAY_OUT)/obj/dbc.o: sim_host/dbc.c sim_host/dbc.h | $(DEPS_STAMP)
+$(REPLAY_OUT)/obj/dbc.o: sim_host/lib/dbc.c sim_host/lib/dbc.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -Wno-maybe-uninitialized -c $< -o $@
 
@@ -63,18 +63,18 @@ $(HOST)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) $(REPLAY_OUT)/obj/dbc.o | $(DEPS
 
 # ---------------------------------------------------------------- host tests (ASan, UBSan)
 
-$(HOSTSAN)/test_canlog: tests/host/test_canlog.c $(CANLOG_SRC) sim_host/lateness.c $(CANLOG_HDR) tests/replay/log_vectors.h \
-        sim_host/lateness.h | $(DEPS_STAMP)
+$(HOSTSAN)/test_canlog: tests/host/test_canlog.c $(CANLOG_SRC) sim_host/lib/lateness.c $(CANLOG_HDR) tests/replay/log_vectors.h \
+        sim_host/lib/lateness.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Isim_host -o $@ $< $(CANLOG_SRC) sim_host/lateness.c -lcmocka
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Isim_host -o $@ $< $(CANLOG_SRC) sim_host/lib/lateness.c -lcmocka
 
 $(HOSTSAN)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(REPLAY_SRC)
 
-$(HOSTSAN)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) sim_host/dbc.c | $(DEPS_STAMP)
+$(HOSTSAN)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) sim_host/lib/dbc.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -o $@ $(DECODE_SRC) sim_host/dbc.c -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -o $@ $(DECODE_SRC) sim_host/lib/dbc.c -lm
 
 # can-utils' log2asc writes the ASC that test_replay.sh reads back.
 $(REPLAY_OUT)/.deps-ok: scripts/deps.sh
@@ -92,19 +92,19 @@ replay-test: $(HOSTSAN)/test_canlog $(HOSTSAN)/pfe_replay $(HOSTSAN)/pfe_decode 
 # ---------------------------------------------------------------- on vcan (scripts/vcan_vm.sh)
 
 # Static programs: the VM's initramfs has no C library.
-REPLAY_STATIC := $(WARN) -O2 -static -I. -Ifirmware
+REPLAY_STATIC := $(WARN) $(HOST_INC) -O2 -static -I. -Ifirmware
 # The bundled drive logs, committed gzip-compressed, expanded into
 # $(BUILD)/logs/ by mk/run.mk's rule.
-REPLAY_LOGS := $(patsubst sim_host/logs/%.log.gz,$(BUILD)/logs/%.log,$(sort $(wildcard sim_host/logs/*.log.gz)))
+REPLAY_LOGS := $(patsubst sim_host/data/logs/%.log.gz,$(BUILD)/logs/%.log,$(sort $(wildcard sim_host/data/logs/*.log.gz)))
 
 $(REPLAY_PAYLOAD)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(REPLAY_STATIC) -o $@ $(REPLAY_SRC)
 
-$(REPLAY_PAYLOAD)/lateness_check: tests/e2e/lateness_check.c $(CANLOG_SRC) sim_host/lateness.c \
-        $(CANLOG_HDR) sim_host/lateness.h | $(DEPS_STAMP)
+$(REPLAY_PAYLOAD)/lateness_check: tests/e2e/lateness_check.c $(CANLOG_SRC) sim_host/lib/lateness.c \
+        $(CANLOG_HDR) sim_host/lib/lateness.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(REPLAY_STATIC) -o $@ $< $(CANLOG_SRC) sim_host/lateness.c
+	$(HOST_CC) $(REPLAY_STATIC) -o $@ $< $(CANLOG_SRC) sim_host/lib/lateness.c
 
 $(REPLAY_PAYLOAD)/slcan_run: tests/e2e/slcan_run.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -122,7 +122,7 @@ $(REPLAY_PAYLOAD)/drive.log: $(REPLAY_DRIVE_LOG)
 $(REPLAY_PAYLOAD)/logs/.copied: $(REPLAY_LOGS) mk/replay.mk
 	@rm -rf $(@D) && mkdir -p $(@D)
 	@for f in $(REPLAY_LOGS); do cp "$$f" $(@D)/ || exit 1; done
-	@echo "replay: $(words $(REPLAY_LOGS)) bundled log(s) from sim_host/logs in the payload"
+	@echo "replay: $(words $(REPLAY_LOGS)) bundled log(s) from sim_host/data/logs in the payload"
 	@touch $@
 
 REPLAY_PAYLOAD_FILES := $(addprefix $(REPLAY_PAYLOAD)/,pfe_replay lateness_check slcan_run \

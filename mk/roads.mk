@@ -1,5 +1,5 @@
 # Road profiles from route planners' data: roadimport (GPX with elevations,
-# distance/elevation CSV; sim_host/road_import.h), its tests, and the route
+# distance/elevation CSV; sim_host/lib/road_import.h), its tests, and the route
 # demo.
 #
 # Include from the top-level Makefile after mk/thesis.mk (it uses BUILD,
@@ -17,20 +17,20 @@
 #                     compared by route_choice with their bounds, and
 #                     plotted: $(ROUTE_DEMO)/route_demo.png
 
-ROADIMPORT_SRC := sim_host/road_import.c
-ROADIMPORT_HDR := sim_host/road_import.h sim_host/cli_args.h
+ROADIMPORT_SRC := sim_host/lib/road_import.c
+ROADIMPORT_HDR := sim_host/lib/road_import.h sim_host/lib/cli_args.h
 ROUTE_DEMO := $(BUILD)/route-demo
 ROUTE_DEMO_NAMES := pass valley coast
 
 .PHONY: test-road-import route-demo
 
-$(HOST)/roadimport: sim_host/roadimport.c $(ROADIMPORT_SRC) $(ROADIMPORT_HDR) | $(DEPS_STAMP)
+$(HOST)/roadimport: sim_host/tools/roadimport.c $(ROADIMPORT_SRC) $(ROADIMPORT_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -o $@ sim_host/roadimport.c $(ROADIMPORT_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -o $@ sim_host/tools/roadimport.c $(ROADIMPORT_SRC) -lm
 
-$(HOSTSAN)/roadimport: sim_host/roadimport.c $(ROADIMPORT_SRC) $(ROADIMPORT_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/roadimport: sim_host/tools/roadimport.c $(ROADIMPORT_SRC) $(ROADIMPORT_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -o $@ sim_host/roadimport.c $(ROADIMPORT_SRC) -lm
+	$(HOST_CC) $(SAN_CFLAGS) -o $@ sim_host/tools/roadimport.c $(ROADIMPORT_SRC) -lm
 
 $(HOSTSAN)/test_road_import: tests/host/test_road_import.c $(ROADIMPORT_SRC) $(ROADIMPORT_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)

@@ -12,7 +12,7 @@
 #                     on vcan0 (natively, else under QEMU), the drive replayed
 #                     by pfe_replay, then run_report: summary, CSV, plot, and
 #                     the verdict on RUN_EXPECT (exit status 1 when it fails)
-#   drive-logs        regenerate the committed logs sim_host/logs/*.log.gz
+#   drive-logs        regenerate the committed logs sim_host/data/logs/*.log.gz
 #   logs              expand them into $(LOG_DIR)/
 #   test-drive-logs   regenerating each committed log gives it byte for byte
 #   test-run-host     capture reader, noise, run_report (ASan, UBSan)
@@ -23,14 +23,14 @@
 #                 the bundled hilly drive, $(RUN_DIR)/hilly_run.log)
 #   RUN_DRIVE_S   length of that slice in seconds                        (120)
 #   RUN_PREVIEW_SAMPLES  its grade previews' length in 12 m samples       (150)
-#   RUN_EXPECT    expected values and tolerances (sim_host/logs/hilly_run.expect)
+#   RUN_EXPECT    expected values and tolerances (sim_host/data/logs/hilly_run.expect)
 #   RUN_JUNIT     JUnit XML report                    ($(RUN_DIR)/junit.xml)
 #   RUN_REPORT_FLAGS  more run_report options (e.g. --module-sa 0x90)
 #   RUN_TIMEOUT_S     limit of the bus part, VM boot included            (600)
 
 RUN_DIR := $(BUILD)/run
 RUN_PAYLOAD := $(RUN_DIR)/payload
-LOGS_SRC := sim_host/logs
+LOGS_SRC := sim_host/data/logs
 LOG_DIR := $(BUILD)/logs
 RUN_DRIVE_S ?= 120
 RUN_LOG ?= $(RUN_DIR)/hilly_run.log
@@ -46,11 +46,11 @@ GNUPLOT_STAMP := $(BUILD)/.gnuplot-ok
 DRIVE_FLAGS := --vehicles 5 --position 1 --gap-m 10 --set-speed-kmh 90 \
                --speed-noise-kmh 0.05 --pitch-noise-deg 0.02 --seed 1
 
-CAPTURE_SRC := sim_host/capture.c sim_host/canlog.c sim_host/bus_ref.c sim_host/ref_model.c
-CAPTURE_HDR := sim_host/capture.h sim_host/canlog.h sim_host/bus_ref.h sim_host/ref_model.h
+CAPTURE_SRC := sim_host/lib/capture.c sim_host/lib/canlog.c sim_host/ref/bus_ref.c sim_host/ref/ref_model.c
+CAPTURE_HDR := sim_host/lib/capture.h sim_host/lib/canlog.h sim_host/ref/bus_ref.h sim_host/ref/ref_model.h
 # run_report's judge of the prediction (its header lists what it needs)
-PJ_SRC := sim_host/prediction_judge.c
-PJ_HDR := sim_host/prediction_judge.h
+PJ_SRC := sim_host/ref/prediction_judge.c
+PJ_HDR := sim_host/ref/prediction_judge.h
 
 .PHONY: run run-sim drive-logs logs test-drive-logs test-run-host test-record-vm
 
@@ -62,13 +62,13 @@ $(GNUPLOT_STAMP): scripts/deps.sh
 	@touch $@
 
 # Only listens: built without the real-bus guard, which it does not need.
-$(HOST)/pfe_record: sim_host/pfe_record.c | $(DEPS_STAMP)
+$(HOST)/pfe_record: sim_host/tools/pfe_record.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -o $@ $<
 
-$(HOST)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(PJ_SRC) $(PJ_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOST)/run_report: sim_host/tools/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(PJ_SRC) $(PJ_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
 
 # ---------------------------------------------------------------- drive logs
 
@@ -116,13 +116,13 @@ test-drive-logs: $(HOST)/drivegen
 
 # What the bus part gets (scripts/run_drive.sh): static programs, the drive.
 RUN_PAYLOAD_FILES := pfe_ecu pfe_record pfe_replay drive.log run_drive.sh
-RUN_STATIC := $(WARN) -static -O2
+RUN_STATIC := $(WARN) $(HOST_INC) -static -O2
 
 $(RUN_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(RUN_STATIC) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
 
-$(RUN_PAYLOAD)/pfe_record: sim_host/pfe_record.c | $(DEPS_STAMP)
+$(RUN_PAYLOAD)/pfe_record: sim_host/tools/pfe_record.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(RUN_STATIC) -o $@ $<
 
@@ -157,19 +157,19 @@ run-sim: $(HOST)/platoon_sim
 
 # ---------------------------------------------------------------- tests
 
-$(HOSTSAN)/test_capture: tests/host/test_capture.c $(CAPTURE_SRC) $(CAPTURE_HDR) sim_host/drive_trace.c \
-        sim_host/drive_trace.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/test_capture: tests/host/test_capture.c $(CAPTURE_SRC) $(CAPTURE_HDR) sim_host/ref/drive_trace.c \
+        sim_host/ref/drive_trace.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(CAPTURE_SRC) sim_host/drive_trace.c \
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(CAPTURE_SRC) sim_host/ref/drive_trace.c \
 	    $(FW_SRC) -lcmocka -lm
 
-$(HOSTSAN)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(PJ_SRC) $(PJ_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/run_report: sim_host/tools/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(PJ_SRC) $(PJ_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
 
-$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/capture.c sim_host/canlog.c sim_host/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/lib/capture.c sim_host/lib/canlog.c sim_host/lib/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/capture.c sim_host/canlog.c $(FW_SRC) -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/lib/capture.c sim_host/lib/canlog.c $(FW_SRC) -lm
 
 test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
         $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP) $(HOST)/drivegen $(HOST)/run_report
@@ -183,7 +183,7 @@ test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offl
 
 # The recorder in the VM, next to candump -L, on every kind of frame.
 RECORD_PAYLOAD := $(BUILD)/record-vm
-$(RECORD_PAYLOAD)/pfe_record: sim_host/pfe_record.c | $(DEPS_STAMP)
+$(RECORD_PAYLOAD)/pfe_record: sim_host/tools/pfe_record.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(RUN_STATIC) -o $@ $<
 $(RECORD_PAYLOAD)/record_vs_candump.sh: tests/e2e/record_vs_candump.sh

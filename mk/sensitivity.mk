@@ -9,7 +9,7 @@
 #   test: test-sensitivity
 #
 # Targets:
-#   $(HOST)/sensitivity   the command (sim_host/sensitivity.c)
+#   $(HOST)/sensitivity   the command (sim_host/tools/sensitivity.c)
 #   sensitivity           run it on the three bundled roads: tables on
 #                         stdout, $(SENS_OUT)/NAME.csv and NAME.png; then
 #                         the number of trucks swept, N = 1 .. 32 on the
@@ -24,8 +24,8 @@
 #
 # The plots need gnuplot: scripts/deps.sh installs gnuplot-nox on first use.
 
-SENS_SRC := sim_host/sensitivity_run.c sim_host/ref_model.c sim_host/road_csv.c
-SENS_HDR := sim_host/sensitivity_run.h sim_host/ref_model.h sim_host/road_csv.h
+SENS_SRC := sim_host/ref/sensitivity_run.c sim_host/ref/ref_model.c sim_host/lib/road_csv.c
+SENS_HDR := sim_host/ref/sensitivity_run.h sim_host/ref/ref_model.h sim_host/lib/road_csv.h
 SENS_OUT := $(BUILD)/sensitivity
 SENS_CHECK := $(BUILD)/sensitivity-check
 SENS_ROADS := $(addprefix $(ROADS)/,$(addsuffix .csv,$(ROAD_NAMES)))
@@ -38,13 +38,13 @@ $(SENS_PLOT_STAMP): scripts/deps.sh
 	sh scripts/deps.sh gnuplot-nox
 	@touch $@
 
-$(HOST)/sensitivity: sim_host/sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOST)/sensitivity: sim_host/tools/sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/sensitivity.c $(SENS_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/tools/sensitivity.c $(SENS_SRC) $(FW_SRC) -lm
 
-$(HOSTSAN)/sensitivity: sim_host/sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/sensitivity: sim_host/tools/sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ sim_host/sensitivity.c $(SENS_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ sim_host/tools/sensitivity.c $(SENS_SRC) $(FW_SRC) -lm
 
 $(HOSTSAN)/test_sensitivity: tests/host/test_sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)

@@ -1,5 +1,5 @@
 # The thesis's claims on the host: node model against object model (5.2),
-# fuel bounds (5.1) and route choice (sim_host/node_model.h, fuel_bounds.h,
+# fuel bounds (5.1) and route choice (sim_host/ref/node_model.h, fuel_bounds.h,
 # route_gen.h).
 #
 # Include from the top-level Makefile after mk/vcan.mk (it uses HOST,
@@ -29,11 +29,11 @@
 #                   against flat and detour against bypass (not guaranteed:
 #                   the thesis's bounds' assumptions fail, exit 3)
 
-THESIS_SRC := sim_host/node_model.c sim_host/fuel_bounds.c sim_host/route_gen.c \
-              sim_host/ref_model.c sim_host/road_csv.c
-THESIS_HDR := sim_host/node_model.h sim_host/fuel_bounds.h sim_host/route_gen.h \
-              sim_host/ref_model.h sim_host/road_csv.h
-ROUTES := sim_host/routes
+THESIS_SRC := sim_host/ref/node_model.c sim_host/ref/fuel_bounds.c sim_host/lib/route_gen.c \
+              sim_host/ref/ref_model.c sim_host/lib/road_csv.c
+THESIS_HDR := sim_host/ref/node_model.h sim_host/ref/fuel_bounds.h sim_host/lib/route_gen.h \
+              sim_host/ref/ref_model.h sim_host/lib/road_csv.h
+ROUTES := sim_host/data/routes
 ROUTE_NAMES := ridge detour rolling bypass
 THESIS_ROADS := $(foreach r,$(ROAD_NAMES),--road $(ROADS)/$(r).csv)
 THESIS_BENCH_N := 5 10 20 50
@@ -41,21 +41,21 @@ VALGRIND_STAMP := $(BUILD)/.deps-valgrind
 
 .PHONY: thesis-test thesis-bench thesis-report
 
-$(HOST)/platoon_compare: sim_host/platoon_compare.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOST)/platoon_compare: sim_host/tools/platoon_compare.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/platoon_compare.c $(THESIS_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/tools/platoon_compare.c $(THESIS_SRC) $(FW_SRC) -lm
 
-$(HOST)/route_choice: sim_host/route_choice.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOST)/route_choice: sim_host/tools/route_choice.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/route_choice.c $(THESIS_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/tools/route_choice.c $(THESIS_SRC) $(FW_SRC) -lm
 
-$(HOST)/routegen: sim_host/routegen.c sim_host/route_gen.c sim_host/route_gen.h | $(DEPS_STAMP)
+$(HOST)/routegen: sim_host/tools/routegen.c sim_host/lib/route_gen.c sim_host/lib/route_gen.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -o $@ sim_host/routegen.c sim_host/route_gen.c
+	$(HOST_CC) $(HOST_CFLAGS) -o $@ sim_host/tools/routegen.c sim_host/lib/route_gen.c
 
-$(HOSTSAN)/routegen: sim_host/routegen.c sim_host/route_gen.c sim_host/route_gen.h | $(DEPS_STAMP)
+$(HOSTSAN)/routegen: sim_host/tools/routegen.c sim_host/lib/route_gen.c sim_host/lib/route_gen.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -o $@ sim_host/routegen.c sim_host/route_gen.c
+	$(HOST_CC) $(SAN_CFLAGS) -o $@ sim_host/tools/routegen.c sim_host/lib/route_gen.c
 
 $(HOSTSAN)/test_node_model: tests/host/test_node_model.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)

@@ -1,5 +1,5 @@
-# The truck a module runs on: calibration files (sim_host/truck_cal.h) and
-# logs of foreign trucks to test against (sim_host/truckgen.c).
+# The truck a module runs on: calibration files (sim_host/lib/truck_cal.h) and
+# logs of foreign trucks to test against (sim_host/tools/truckgen.c).
 #
 #   test-truck-cal    the calibration file parser: fields, units, sections,
 #                     errors (CMocka, ASan, UBSan); every tool's --calib
@@ -16,7 +16,7 @@
 #                     FILE and through the Cortex-M4 image built for FILE:
 #                     identical records, unlike the default calibration's
 #   firmware CALIB=FILE  also builds $(M4_OUT)/pfe_ecu_mps2_calib.elf, the
-#                     replay image with FILE compiled in (sim_host/cal2c.c);
+#                     replay image with FILE compiled in (sim_host/tools/cal2c.c);
 #                     the bundled trucks have images of their own:
 #                     $(M4_OUT)/pfe_ecu_mps2_truck12t.elf, ..._truck60t.elf
 #
@@ -25,7 +25,7 @@
 #
 # Included from the top-level Makefile.
 
-TRUCKS := sim_host/trucks
+TRUCKS := sim_host/data/trucks
 TRUCK_GEN := $(BUILD)/gen
 
 .PHONY: test-truck-cal test-foreign-trucks foreign-bench check-replay-calib
@@ -41,13 +41,13 @@ test-truck-cal: $(HOSTSAN)/test_truck_cal $(HOST)/pfe_ecu_replay $(HOST)/pfe_ecu
 	@echo "== host: test_truck_cal"; $(HOSTSAN)/test_truck_cal $(TRUCKS)
 	@sh tests/host/truck_cal_tools.sh $(HOST) $(TRUCKS) $(BUILD)/truck-cal $(ROADS)/uphill.csv
 
-$(HOST)/truckgen: sim_host/truckgen.c $(TRUCK_CAL_SRC) $(REF_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+$(HOST)/truckgen: sim_host/tools/truckgen.c $(TRUCK_CAL_SRC) $(REF_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/truckgen.c $(TRUCK_CAL_SRC) $(REF_SRC) $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/truckgen.c $(TRUCK_CAL_SRC) $(REF_SRC) $(FW_SRC) -lm
 
-$(HOST)/truck_judge: sim_host/truck_judge.c sim_host/canlog.c $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+$(HOST)/truck_judge: sim_host/tools/truck_judge.c sim_host/lib/canlog.c $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/truck_judge.c sim_host/canlog.c $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/truck_judge.c sim_host/lib/canlog.c $(FW_SRC) -lm
 
 test-foreign-trucks: $(FOREIGN_TOOLS)
 	@HOSTILE_RANDOM_XFAIL=$(HOSTILE_RANDOM_XFAIL) sh tests/host/foreign_trucks.sh $(HOST) $(TRUCKS) $(BUILD)/foreign
@@ -59,9 +59,9 @@ foreign-bench: $(FOREIGN_TOOLS)
 
 # ---------------------------------------------------------------- calibrated Cortex-M4 images
 
-$(HOST)/cal2c: sim_host/cal2c.c $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+$(HOST)/cal2c: sim_host/tools/cal2c.c $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/cal2c.c $(TRUCK_CAL_SRC) $(FW_SRC)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/cal2c.c $(TRUCK_CAL_SRC) $(FW_SRC)
 
 TRUCK_NAMES := truck12t truck60t
 .SECONDARY: $(patsubst %,$(TRUCK_GEN)/calib_%.c,$(TRUCK_NAMES) user)

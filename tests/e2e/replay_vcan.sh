@@ -7,7 +7,7 @@
 #
 # The folder holds pfe_replay, lateness_check, slcan_run (static programs),
 # drive.log (the e2e drive, a candump log) and logs/ (the committed logs of
-# sim_host/logs, maybe none). can-utils (candump, canplayer, cangen,
+# sim_host/data/logs, maybe none). can-utils (candump, canplayer, cangen,
 # log2asc) come with the VM.
 #
 # Checks, each printed "replay: NAME ok" or "replay: NAME FAILED":

@@ -1,6 +1,6 @@
 /*
  * fuzz_canlog.c - libFuzzer target: the CAN log reader of the host tools
- * (sim_host/canlog.h): candump log, candump's printed output, Vector ASC.
+ * (sim_host/lib/canlog.h): candump log, candump's printed output, Vector ASC.
  *
  * Input: byte 0 chooses the format asked for (bits 0-2: auto, log, printed,
  * printed-delta, asc; others auto) and the error mode (bit 3: skip, else
@@ -20,7 +20,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "canlog.h"
+#include "lib/canlog.h"
 #include "fuzz_check.h"
 
 static canlog_reader_t g_reader;  /* about 100 KiB each: not on the stack */

@@ -1,6 +1,6 @@
 /*
- * Tests of the CAN log reader and writer (sim_host/canlog.h) and of the
- * lateness histogram (sim_host/lateness.h).
+ * Tests of the CAN log reader and writer (sim_host/lib/canlog.h) and of the
+ * lateness histogram (sim_host/lib/lateness.h).
  *
  *     test_canlog [DRIVE_LOG]
  *
@@ -32,8 +32,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "canlog.h"
-#include "lateness.h"
+#include "lib/canlog.h"
+#include "lib/lateness.h"
 
 #define MAX_FRAMES 64
 #define PATH_LEN 4096
