@@ -29,7 +29,10 @@ SAN_CFLAGS := $(WARN) $(HOST_INC) -O1 -g $(SAN)
 FW_SRC := $(sort $(wildcard firmware/*.c))
 FW_HDR := $(sort $(wildcard firmware/*.h))
 REF_SRC := sim_host/ref/ref_model.c sim_host/ref/sim_compare.c sim_host/lib/road_csv.c sim_host/ref/drive_trace.c
-SIM_HDR := $(sort $(wildcard sim_host/*/*.h))
+SIM_HDR := $(sort $(wildcard sim_host/*/*.h sim_host/*/*/*.h))
+# The one CAN log reader of the host tools (sim_host/lib/log/log.h).
+LOG_SRC := $(sort $(wildcard sim_host/lib/log/*.c))
+LOG_HDR := $(sort $(wildcard sim_host/lib/log/*.h))
 UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
 
 DEPS_STAMP := $(BUILD)/.deps-ok
@@ -78,9 +81,9 @@ $(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(D
 # The same firmware over a log in logical time (hal/replay); its twin on the
 # Cortex-M4 is $(M4_OUT)/pfe_ecu_mps2.elf.
 ECU_REPLAY_SRC := $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/replay/hal_replay_ecu.c
-# The host reads the log through sim_host/lib/canlog.c (every form), the image
+# The host reads the log through sim_host/lib/log/ (every form), the image
 # through hal/replay's own parser.
-REPLAY_SOURCE_SRC := sim_host/lib/replay_source.c sim_host/lib/canlog.c
+REPLAY_SOURCE_SRC := sim_host/lib/replay_source.c $(LOG_SRC)
 $(HOST)/pfe_ecu_replay: sim_host/tools/pfe_ecu_replay.c $(ECU_REPLAY_SRC) $(REPLAY_SOURCE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/pfe_ecu_replay.c $(ECU_REPLAY_SRC) $(REPLAY_SOURCE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC)

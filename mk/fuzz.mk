@@ -17,7 +17,7 @@
 # NAME and the inputs of every crash found, replayed first, in
 # tests/fuzz/regress/NAME:
 #   ecu      frame sequences and time steps into pfe_ecu (firmware/)
-#   canlog   sim_host/lib/canlog.c: candump log, candump printed, Vector ASC
+#   canlog   sim_host/lib/log/: candump log, candump printed, Vector ASC
 #   replay   hal/replay/hal_replay.c: the replay bus's candump parser
 #   capture  sim_host/lib/capture.c: the capture reader
 #   dbc      sim_host/lib/dbc.c, seeded with can_dbc/pfe.dbc
@@ -55,8 +55,8 @@ $(FUZZ_OUT)/fuzz_ecu: tests/fuzz/fuzz_ecu.c $(FUZZ_HDR) $(FW_SRC) $(FW_HDR) | $(
 $(FUZZ_OUT)/fuzz_nvm: tests/fuzz/fuzz_nvm.c $(FUZZ_HDR) $(FW_SRC) $(FW_HDR) | $(FUZZ_DEPS)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< $(FW_SRC)
 
-$(FUZZ_OUT)/fuzz_canlog: tests/fuzz/fuzz_canlog.c $(FUZZ_HDR) sim_host/lib/canlog.c sim_host/lib/canlog.h | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/lib/canlog.c
+$(FUZZ_OUT)/fuzz_canlog: tests/fuzz/fuzz_canlog.c $(FUZZ_HDR) $(LOG_SRC) $(LOG_HDR) | $(FUZZ_DEPS)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< $(LOG_SRC)
 
 $(FUZZ_OUT)/fuzz_replay: tests/fuzz/fuzz_replay.c $(FUZZ_HDR) hal/replay/hal_replay.c hal/hal_can_mem.c \
         $(HAL_HDR) $(FW_HDR) | $(FUZZ_DEPS)
@@ -64,7 +64,7 @@ $(FUZZ_OUT)/fuzz_replay: tests/fuzz/fuzz_replay.c $(FUZZ_HDR) hal/replay/hal_rep
 
 $(FUZZ_OUT)/fuzz_capture: tests/fuzz/fuzz_capture.c $(FUZZ_HDR) sim_host/lib/capture.c sim_host/lib/capture.h \
         $(FW_HDR) | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/lib/capture.c sim_host/lib/canlog.c
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/lib/capture.c $(LOG_SRC)
 
 $(FUZZ_OUT)/fuzz_dbc: tests/fuzz/fuzz_dbc.c $(FUZZ_HDR) sim_host/lib/dbc.c sim_host/lib/dbc.h | $(FUZZ_DEPS)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/lib/dbc.c -lm
@@ -94,7 +94,7 @@ fuzz-smoke: fuzz-build
 	$(call fuzz_run,$(FUZZ_SMOKE_SECONDS))
 
 $(FUZZ_OUT)/ecu_seed: tests/fuzz/ecu_seed.c sim_host/lib/capture.c sim_host/lib/capture.h | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(WARN) $(HOST_INC) -O1 -I. -Ifirmware -Isim_host -o $@ $< sim_host/lib/capture.c sim_host/lib/canlog.c
+	$(FUZZ_CC) $(WARN) $(HOST_INC) -O1 -I. -Ifirmware -Isim_host -o $@ $< sim_host/lib/capture.c $(LOG_SRC)
 
 fuzz-seeds: $(FUZZ_OUT)/ecu_seed $(BUILD)/e2e/payload/drive.log
 	sh tests/fuzz/make_seeds.sh $(BUILD)/e2e/payload/drive.log $(FUZZ_OUT)/ecu_seed

@@ -35,8 +35,8 @@ REPLAY_BENCH_FRAMES ?= 1000000
 REPLAY_BENCH_RUNS ?= 5
 REPLAY_VM_TIMEOUT_S ?= 600
 
-CANLOG_SRC := sim_host/lib/canlog.c
-CANLOG_HDR := sim_host/lib/canlog.h
+CANLOG_SRC := $(LOG_SRC)
+CANLOG_HDR := $(LOG_HDR)
 REPLAY_SRC := sim_host/tools/pfe_replay.c $(CANLOG_SRC) sim_host/lib/lateness.c hal/socketcan/hal_socketcan.c
 REPLAY_HDR := $(CANLOG_HDR) sim_host/lib/lateness.h hal/socketcan/hal_socketcan.h hal/hal_can.h
 DECODE_SRC := sim_host/tools/pfe_decode.c $(CANLOG_SRC)

@@ -46,8 +46,8 @@ GNUPLOT_STAMP := $(BUILD)/.gnuplot-ok
 DRIVE_FLAGS := --vehicles 5 --position 1 --gap-m 10 --set-speed-kmh 90 \
                --speed-noise-kmh 0.05 --pitch-noise-deg 0.02 --seed 1
 
-CAPTURE_SRC := sim_host/lib/capture.c sim_host/lib/canlog.c sim_host/ref/bus_ref.c sim_host/ref/ref_model.c
-CAPTURE_HDR := sim_host/lib/capture.h sim_host/lib/canlog.h sim_host/ref/bus_ref.h sim_host/ref/ref_model.h
+CAPTURE_SRC := sim_host/lib/capture.c $(LOG_SRC) sim_host/ref/bus_ref.c sim_host/ref/ref_model.c
+CAPTURE_HDR := sim_host/lib/capture.h $(LOG_HDR) sim_host/ref/bus_ref.h sim_host/ref/ref_model.h
 # run_report's judge of the prediction (its header lists what it needs)
 PJ_SRC := sim_host/ref/prediction_judge.c
 PJ_HDR := sim_host/ref/prediction_judge.h
@@ -167,9 +167,9 @@ $(HOSTSAN)/run_report: sim_host/tools/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SR
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
 
-$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/lib/capture.c sim_host/lib/canlog.c sim_host/lib/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/lib/capture.c $(LOG_SRC) sim_host/lib/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/lib/capture.c sim_host/lib/canlog.c $(FW_SRC) -lm
+	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/lib/capture.c $(LOG_SRC) $(FW_SRC) -lm
 
 test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
         $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP) $(HOST)/drivegen $(HOST)/run_report

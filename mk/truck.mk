@@ -45,9 +45,9 @@ $(HOST)/truckgen: sim_host/tools/truckgen.c $(TRUCK_CAL_SRC) $(REF_SRC) $(FW_SRC
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/truckgen.c $(TRUCK_CAL_SRC) $(REF_SRC) $(FW_SRC) -lm
 
-$(HOST)/truck_judge: sim_host/tools/truck_judge.c sim_host/lib/canlog.c $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
+$(HOST)/truck_judge: sim_host/tools/truck_judge.c $(LOG_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/truck_judge.c sim_host/lib/canlog.c $(FW_SRC) -lm
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/truck_judge.c $(LOG_SRC) $(FW_SRC) -lm
 
 test-foreign-trucks: $(FOREIGN_TOOLS)
 	@HOSTILE_RANDOM_XFAIL=$(HOSTILE_RANDOM_XFAIL) sh tests/host/foreign_trucks.sh $(HOST) $(TRUCKS) $(BUILD)/foreign

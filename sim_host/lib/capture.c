@@ -1,4 +1,4 @@
-/* capture.c - recorded CAN buses, read through sim_host/lib/canlog.c (contract in capture.h). */
+/* capture.c - recorded CAN buses, read through sim_host/lib/log/ (contract in capture.h). */
 #include "lib/capture.h"
 
 #include <errno.h>
@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "lib/canlog.h"
+#include "lib/log/log.h"
 
 #define LINE_NAME "line"   /* the name canlog gives a single line, cut from its messages */
 

@@ -2,15 +2,15 @@
  * capture.h - a recorded CAN bus, for the judge (run_report) and the
  * checkers (ecu_check, ecu_offline).
  *
- * A capture is any log sim_host/lib/canlog.h reads, through that one parser:
+ * A capture is any log sim_host/lib/log/log.h reads, through that one parser:
  * candump -L (and pfe_record's output), candump's printed output with
- * timestamps (-t a, z, A; -t d reads as -t z, see canlog.h) and Vector
+ * timestamps (-t a, z, A; -t d reads as -t z, see lib/log/log.h) and Vector
  * ASC, the form detected from the first lines. For example
  *
  *     (1700000000.010000) vcan0 0CF01300#C67C007DFFFFFCFF
  *     (000.011063)  can0  18FEF100   [8]  FF 12 34 56 78 9A BC DE
  *
- * Every line is read as canlog.h describes, blank and comment lines
+ * Every line is read as lib/log/log.h describes, blank and comment lines
  * skipped; candump's "DROPCOUNT: dropped N ..." lines add N to
  * capture_t.dropped. Classic frames with 29-bit ids (J1939) become records;
  * 11-bit, remote, CAN FD and error frames are counted and skipped. A log

@@ -1,5 +1,5 @@
 /*
- * replay_source.h - a CAN log read through sim_host/lib/canlog.h as the frame
+ * replay_source.h - a CAN log read through sim_host/lib/log/log.h as the frame
  * source of a replay bus (hal/replay/hal_replay.h), so that the host tools
  * that run the firmware over a log (pfe_ecu_replay, pfe_faults) read every
  * form the host's other tools read: candump -L, candump's printed output
@@ -27,7 +27,7 @@
 #include <stdint.h>
 
 #include "hal/replay/hal_replay.h"
-#include "lib/canlog.h"
+#include "lib/log/log.h"
 
 typedef struct {
     canlog_reader_t reader;

@@ -6,7 +6,7 @@
  *              [--skip-errors] [LOG | -]
  *
  * LOG: a candump log, candump's printed output or a Vector ASC file
- * (sim_host/lib/canlog.h), default standard input. The DBC (default
+ * (sim_host/lib/log/log.h), default standard input. The DBC (default
  * can_dbc/pfe.dbc, else the one next to this program's build folder) is read
  * with sim_host/lib/dbc.h.
  *
@@ -36,7 +36,7 @@
  * with a value's VAL_ description in parentheses, "remote request" for a
  * remote frame, "ERRORFRAME" and the data for an error frame, and "?" and
  * the data for a frame no message matches. TIME is seconds with 6 decimals
- * in the log's time base (canlog.h). Multiplexed messages show the
+ * in the log's time base (lib/log/log.h). Multiplexed messages show the
  * multiplexer and the signals its value selects.
  *
  * CSV (--csv): a header "time_s,iface,id,message" and one column per signal
@@ -62,7 +62,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "lib/canlog.h"
+#include "lib/log/log.h"
 #include "lib/dbc.h"
 
 #define EXIT_INPUT 1

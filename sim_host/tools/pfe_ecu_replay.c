@@ -9,7 +9,7 @@
  * FILE is the truck's calibration (sim_host/lib/truck_cal.h; default: the
  * default calibration); the Cortex-M4 image has it compiled in instead
  * (sim_host/tools/cal2c.c).
- * LOG is a CAN log in any form the host's tools read (sim_host/lib/canlog.h,
+ * LOG is a CAN log in any form the host's tools read (sim_host/lib/log/log.h,
  * through sim_host/lib/replay_source.h): candump -L, candump's printed output
  * with timestamps (-t a, z, A; -t d with --format printed-delta, since it
  * looks like -t z), or Vector ASC; the form is detected from the first

@@ -84,7 +84,7 @@ typedef struct {
 static cap_t *g_cap;
 static size_t g_n;
 
-/* Reads a CAN log (any form sim_host/lib/canlog.h reads) through the replay
+/* Reads a CAN log (any form sim_host/lib/log/log.h reads) through the replay
  * bus into g_cap. */
 static int load(const char *path)
 {

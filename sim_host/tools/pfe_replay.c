@@ -5,7 +5,7 @@
  *   pfe_replay [OPTION...] [TX=LOG...]
  *
  * The log: a candump log, candump's printed output or a Vector ASC file,
- * detected from its first lines (sim_host/lib/canlog.h says exactly what each
+ * detected from its first lines (sim_host/lib/log/log.h says exactly what each
  * format may hold).
  *
  * canplayer's options (same letters and meaning, -g as said below):
@@ -126,7 +126,7 @@
 #include <linux/can/raw.h>
 
 #include "hal/socketcan/hal_socketcan.h"
-#include "lib/canlog.h"
+#include "lib/log/log.h"
 #include "lib/lateness.h"
 
 #define EXIT_INPUT 1

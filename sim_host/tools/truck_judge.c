@@ -79,7 +79,7 @@
 #include <unistd.h>
 
 #include "lib/cli_args.h"
-#include "lib/canlog.h"
+#include "lib/log/log.h"
 #include "firmware/pfe_codec.h"
 
 typedef struct {

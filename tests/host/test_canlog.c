@@ -1,5 +1,5 @@
 /*
- * Tests of the CAN log reader and writer (sim_host/lib/canlog.h) and of the
+ * Tests of the CAN log reader and writer (sim_host/lib/log/log.h) and of the
  * lateness histogram (sim_host/lib/lateness.h).
  *
  *     test_canlog [DRIVE_LOG]
@@ -32,7 +32,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "lib/canlog.h"
+#include "lib/log/log.h"
 #include "lib/lateness.h"
 
 #define MAX_FRAMES 64

@@ -189,7 +189,7 @@ static void test_lines_skipped(void **state)
 static void test_bad_lines(void **state)
 {
     (void)state;
-    /* canlog's reasons (sim_host/lib/canlog.h), the line's file and number cut */
+    /* canlog's reasons (sim_host/lib/log/log.h), the line's file and number cut */
     parse_bad("(1700000000.000000) vcan0", "truncated line: no frame after the interface");
     parse_bad("(1700000000.000000)", "truncated line: no interface and frame after the timestamp");
     parse_bad("(1700000000.00000", "truncated line: line ends in the timestamp");

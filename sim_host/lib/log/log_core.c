@@ -1,7 +1,7 @@
 /* canlog.c - CAN log reader and candump log writer (contract in canlog.h). */
 #define _POSIX_C_SOURCE 200809L
 
-#include "lib/canlog.h"
+#include "lib/log/log.h"
 
 #include <errno.h>
 #include <stdarg.h>

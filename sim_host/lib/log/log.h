@@ -1,5 +1,5 @@
 /*
- * canlog.h - a streaming reader of CAN log files, and a writer of candump's
+ * log.h - a streaming reader of CAN log files, and a writer of candump's
  * log line, for the host tools (pfe_replay, pfe_decode) and their tests.
  *
  * Formats read (detected from the first meaningful line, or forced):
