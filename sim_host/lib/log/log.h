@@ -1,6 +1,12 @@
 /*
  * log.h - a streaming reader of CAN log files, and a writer of candump's
- * log line, for the host tools (pfe_replay, pfe_decode) and their tests.
+ * log line: the one log parser of every host tool (pfe_replay, pfe_decode,
+ * pfe_ecu_replay, pfe_faults, run_report and ecu_check through capture.h,
+ * truck_judge) and their tests. One file per format: log_candump.c,
+ * log_printed.c, log_asc.c, over log_core.c (lines, numbers, ids, time,
+ * detection); log_parse.h is what they share. The Cortex-M4 image reads
+ * logs through hal/replay's heap-free parser instead; both are held to the
+ * vectors of tests/replay/log_vectors.h.
  *
  * Formats read (detected from the first meaningful line, or forced):
  *
