@@ -80,7 +80,7 @@ $(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(D
 
 # The same firmware over a log in logical time (hal/replay); its twin on the
 # Cortex-M4 is $(M4_OUT)/pfe_ecu_mps2.elf.
-ECU_REPLAY_SRC := $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/replay/hal_replay_ecu.c
+ECU_REPLAY_SRC := $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/replay/hal_replay_ecu.c
 # The host reads the log through sim_host/lib/log/ (every form), the image
 # through hal/replay's own parser.
 REPLAY_SOURCE_SRC := sim_host/lib/replay_source.c $(LOG_SRC)
@@ -99,7 +99,7 @@ $(HOST)/road2c: sim_host/tools/road2c.c sim_host/lib/road_csv.c sim_host/lib/roa
 # ---------------------------------------------------------------- host tests (ASan, UBSan)
 
 # Unit tests: the firmware plus the test backend (hal/fake), nothing else.
-UNIT_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem.c
+UNIT_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem_api.c hal/hal_can_mem.c
 
 $(HOSTSAN)/unit_%: tests/unit/%.c $(UNIT_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
@@ -130,12 +130,12 @@ $(HOSTSAN)/test_dbc_codec: tests/host/test_dbc_codec.c sim_host/lib/dbc.c sim_ho
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/lib/dbc.c $(FW_SRC) -lcmocka -lm
 
 # The HAL conformance suite on the test backend (on SocketCAN: mk/vcan.mk).
-$(HOSTSAN)/test_hal_fake: tests/hal/test_hal_fake.c tests/hal/hal_conformance.c hal/fake/hal_fake.c hal/hal_can_mem.c $(HAL_HDR) | $(DEPS_STAMP)
+$(HOSTSAN)/test_hal_fake: tests/hal/test_hal_fake.c tests/hal/hal_conformance.c hal/fake/hal_fake.c hal/hal_can_mem_api.c hal/hal_can_mem.c $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
 
 # ... and on the replay backend, with the backend's own tests.
-$(HOSTSAN)/test_hal_replay: tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem.c $(HAL_HDR) tests/replay/log_vectors.h | $(DEPS_STAMP)
+$(HOSTSAN)/test_hal_replay: tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c $(HAL_HDR) tests/replay/log_vectors.h | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
 
@@ -195,7 +195,7 @@ $(call m4_image,pfe_bench,$(FW_SRC) tests/bench/m4_bench.c $(GEN)/road_hilly.c)
 # The firmware's unit tests, cross-compiled.
 $(foreach t,$(UNIT_TESTS),$(call m4_test,unit_$(t),$(UNIT_SRC) tests/unit/$(t).c))
 # The replay backend the image runs drives on, conformance suite included.
-$(call m4_test,test_hal_replay,tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem.c)
+$(call m4_test,test_hal_replay,tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c)
 
 FIRMWARE_ELF := $(M4_OUT)/pfe_mps2.elf
 
@@ -261,9 +261,9 @@ $(E2E_PAYLOAD)/ecu_vcan.sh: tests/e2e/ecu_vcan.sh
 	@mkdir -p $(@D)
 	cp $< $@
 
-$(E2E_PAYLOAD)/pfe_faults: sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+$(E2E_PAYLOAD)/pfe_faults: sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(HOST_INC) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
+	$(HOST_CC) $(WARN) $(HOST_INC) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
 $(E2E_PAYLOAD)/faults.log: $(HOST)/pfe_faults $(E2E_PAYLOAD)/drive.log
 	$(HOST)/pfe_faults inject $(E2E_PAYLOAD)/drive.log $@
 
@@ -302,9 +302,9 @@ e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log fau
 $(HOST)/ecu_check: sim_host/tools/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
-$(HOST)/pfe_faults: sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
+$(HOST)/pfe_faults: sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
+	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/pfe_faults.c hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
 
 check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_OUT)/pfe_ecu_mps2.elf \
         $(E2E_PAYLOAD)/drive.log $(BUILD)/logs/hilly.log

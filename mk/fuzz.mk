@@ -58,9 +58,9 @@ $(FUZZ_OUT)/fuzz_nvm: tests/fuzz/fuzz_nvm.c $(FUZZ_HDR) $(FW_SRC) $(FW_HDR) | $(
 $(FUZZ_OUT)/fuzz_canlog: tests/fuzz/fuzz_canlog.c $(FUZZ_HDR) $(LOG_SRC) $(LOG_HDR) | $(FUZZ_DEPS)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< $(LOG_SRC)
 
-$(FUZZ_OUT)/fuzz_replay: tests/fuzz/fuzz_replay.c $(FUZZ_HDR) hal/replay/hal_replay.c hal/hal_can_mem.c \
+$(FUZZ_OUT)/fuzz_replay: tests/fuzz/fuzz_replay.c $(FUZZ_HDR) hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c \
         $(HAL_HDR) $(FW_HDR) | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< hal/replay/hal_replay.c hal/hal_can_mem.c
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c
 
 $(FUZZ_OUT)/fuzz_capture: tests/fuzz/fuzz_capture.c $(FUZZ_HDR) sim_host/lib/capture.c sim_host/lib/capture.h \
         $(FW_HDR) | $(FUZZ_DEPS)

@@ -60,7 +60,7 @@ $(HARDEN_STAMP): scripts/deps.sh
 # backend it runs drives on (hal/replay), the ECU loop and the CAN queue. Not
 # hal/socketcan, hal/posix (Linux) nor hal/fake (host tests).
 MISRA_SRC := $(FW_SRC) $(sort $(wildcard hal/mps2/*.c hal/replay/*.c)) \
-             hal/hal_ecu_loop.c hal/hal_can_mem.c
+             hal/hal_ecu_loop.c hal/hal_can_mem.c hal/hal_can_mem_api.c
 MISRA_CHECK := python3 scripts/misra_check.py --deviations misra/deviations.txt
 # Recursive: STM32_MISRA_SRC comes from mk/stm32.mk, included later.
 MISRA_STM32_SRC = $(FW_SRC) hal/hal_ecu_loop.c hal/hal_can_mem.c $(STM32_MISRA_SRC)
@@ -87,7 +87,7 @@ COV_CFLAGS := $(WARN) $(HOST_INC) -O0 -g --coverage -DPFE_NO_FORCE_INLINE
 COV_OBJ := $(COV_OUT)/obj
 # The firmware and the sources every test links with it, compiled once: the
 # counts of all the tests add up in one .gcda per source.
-COV_LIB_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem.c $(REF_SRC) sim_host/lib/dbc.c
+COV_LIB_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem_api.c hal/hal_can_mem.c $(REF_SRC) sim_host/lib/dbc.c
 COV_LIB_OBJ := $(patsubst %.c,$(COV_OBJ)/%.o,$(COV_LIB_SRC))
 COV_TESTS := $(addprefix unit_,$(UNIT_TESTS)) test_accuracy test_predict test_dbc_codec
 COV_TEST_OBJ := $(patsubst %,$(COV_OBJ)/tests/unit/%.o,$(UNIT_TESTS)) \

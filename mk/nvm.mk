@@ -1,7 +1,7 @@
 # NVM save path under resets, torn and failed writes (tests/host/test_nvm_faults.c),
 # and the same test against a planted bug it must catch. Included from the Makefile.
 
-NVM_FAULTS_SRC := tests/host/test_nvm_faults.c hal/hal_ecu_loop.c hal/fake/hal_fake.c hal/hal_can_mem.c
+NVM_FAULTS_SRC := tests/host/test_nvm_faults.c hal/hal_ecu_loop.c hal/fake/hal_fake.c hal/hal_can_mem_api.c hal/hal_can_mem.c
 
 $(HOSTSAN)/test_nvm_faults: $(NVM_FAULTS_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
 	@mkdir -p $(@D)

@@ -26,7 +26,7 @@ STM32_ECU_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c $(STM32_HAL_SRC) ha
     hal/stm32f4/main_ecu.c
 # The bench: the mps2 ECU replay (hal/mps2/main_ecu.c, hal/replay) on this
 # board, TIM2 counting instructions under QEMU (hal/stm32f4/icount_tim2.c).
-STM32_BENCH_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c \
+STM32_BENCH_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/hal_can_mem_api.c \
     hal/replay/hal_replay_ecu.c hal/stm32f4/startup.c hal/stm32f4/hal_stm32_board.c \
     hal/stm32f4/hal_stm32_time.c hal/stm32f4/icount_tim2.c hal/stm32f4/main_bench_glue.c \
     hal/mps2/main_ecu.c hal/mps2/calib_default.c hal/mps2/semihost.c
