@@ -70,7 +70,7 @@ $(HOST)/platoon_sim: sim_host/tools/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR)
 # The module as a Linux process on SocketCAN (hal/socketcan, hal/posix).
 ECU_LOOP_SRC := hal/hal_ecu_loop.c
 # The truck calibration file (--calib) of the host tools that run the model.
-TRUCK_CAL_SRC := sim_host/lib/truck_cal.c
+TRUCK_CAL_SRC := sim_host/lib/truck_cal.c sim_host/lib/cli_args.c
 ECU_HOST_SRC := sim_host/tools/pfe_ecu.c $(ECU_LOOP_SRC) hal/socketcan/hal_socketcan.c \
     hal/posix/hal_nvm_file.c hal/posix/hal_time_posix.c $(TRUCK_CAL_SRC)
 HAL_HDR := $(sort $(wildcard hal/*.h hal/*/*.h))

@@ -37,9 +37,9 @@ REPLAY_VM_TIMEOUT_S ?= 600
 
 CANLOG_SRC := $(LOG_SRC)
 CANLOG_HDR := $(LOG_HDR)
-REPLAY_SRC := sim_host/tools/pfe_replay.c $(CANLOG_SRC) sim_host/lib/lateness.c hal/socketcan/hal_socketcan.c
+REPLAY_SRC := sim_host/tools/pfe_replay.c firmware/pfe_can.c $(CANLOG_SRC) sim_host/lib/lateness.c hal/socketcan/hal_socketcan.c
 REPLAY_HDR := $(CANLOG_HDR) sim_host/lib/lateness.h hal/socketcan/hal_socketcan.h hal/hal_can.h
-DECODE_SRC := sim_host/tools/pfe_decode.c $(CANLOG_SRC)
+DECODE_SRC := sim_host/tools/pfe_decode.c firmware/pfe_can.c $(CANLOG_SRC)
 DECODE_HDR := $(CANLOG_HDR) sim_host/lib/dbc.h
 
 .PHONY: replay-test replay-vcan-test replay-bench

@@ -49,7 +49,7 @@ DRIVE_FLAGS := --vehicles 5 --position 1 --gap-m 10 --set-speed-kmh 90 \
 CAPTURE_SRC := sim_host/lib/capture.c $(LOG_SRC) sim_host/ref/bus_ref.c sim_host/ref/ref_model.c
 CAPTURE_HDR := sim_host/lib/capture.h $(LOG_HDR) sim_host/ref/bus_ref.h sim_host/ref/ref_model.h
 # run_report's judge of the prediction (its header lists what it needs)
-PJ_SRC := sim_host/ref/prediction_judge.c
+PJ_SRC := sim_host/ref/prediction_judge.c sim_host/lib/plot.c
 PJ_HDR := sim_host/ref/prediction_judge.h
 
 .PHONY: run run-sim drive-logs logs test-drive-logs test-run-host test-record-vm

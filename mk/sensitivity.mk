@@ -24,7 +24,7 @@
 #
 # The plots need gnuplot: scripts/deps.sh installs gnuplot-nox on first use.
 
-SENS_SRC := sim_host/ref/sensitivity_run.c sim_host/ref/ref_model.c sim_host/lib/road_csv.c
+SENS_SRC := sim_host/lib/plot.c sim_host/ref/sensitivity_run.c sim_host/ref/ref_model.c sim_host/lib/road_csv.c
 SENS_HDR := sim_host/ref/sensitivity_run.h sim_host/ref/ref_model.h sim_host/lib/road_csv.h
 SENS_OUT := $(BUILD)/sensitivity
 SENS_CHECK := $(BUILD)/sensitivity-check

@@ -37,4 +37,16 @@ static inline int cli_parse_ul(const char *s, unsigned long lo, unsigned long hi
     return 0;
 }
 
+/*
+ * The platoon options of the tools that build one (drivegen, run_report,
+ * pfe_ecu): --vehicles N (1 .. PFE_MAX_VEHICLES), --position P (0 ..
+ * PFE_MAX_VEHICLES - 1; below N is the caller's check, once every option
+ * is read) and, when gap_m is not NULL, --gap-m D (0 .. 642.55 m, what
+ * PFE_PlatoonConfig carries). Returns 1 when option a is one of them, with
+ * *bad set to whether its value v is bad (and the field untouched), else 0
+ * with nothing changed (cli_args.c).
+ */
+int cli_platoon_option(const char *a, const char *v, unsigned long *vehicles,
+                       unsigned long *position, double *gap_m, int *bad);
+
 #endif /* CLI_ARGS_H */

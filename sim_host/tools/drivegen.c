@@ -155,12 +155,8 @@ static int parse_args(int argc, char **argv, options_t *o)
             bad = cli_parse_ul(v, 0U, 253U, &o->preview_source);
         } else if (strcmp(a, "--set-speed-kmh") == 0) {
             bad = cli_parse_double(v, 5.0, 250.0, &o->set_kmh);
-        } else if (strcmp(a, "--vehicles") == 0) {
-            bad = cli_parse_ul(v, 1U, PFE_MAX_VEHICLES, &o->vehicles);
-        } else if (strcmp(a, "--position") == 0) {
-            bad = cli_parse_ul(v, 0U, PFE_MAX_VEHICLES - 1U, &o->position);
-        } else if (strcmp(a, "--gap-m") == 0) {
-            bad = cli_parse_double(v, 0.0, 642.55, &o->gap_m);
+        } else if (cli_platoon_option(a, v, &o->vehicles, &o->position, &o->gap_m, &bad)) {
+            /* --vehicles, --position, --gap-m */
         } else if (strcmp(a, "--seed") == 0) {
             char *end = NULL;
             errno = 0;

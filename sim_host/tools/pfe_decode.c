@@ -62,6 +62,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "firmware/pfe_can.h"
 #include "lib/log/log.h"
 #include "lib/dbc.h"
 
@@ -104,16 +105,6 @@ typedef struct {
 } decoder_t;
 
 /* ------------------------------------------------------------------ helpers */
-
-static uint32_t j1939_pgn(uint32_t id29)
-{
-    const uint32_t pf = (id29 >> 16) & 0xFFU;
-    uint32_t pgn = (id29 >> 8) & 0x3FFFFU;
-    if (pf < 240U) {
-        pgn &= 0x3FF00U;
-    }
-    return pgn;
-}
 
 static int decimals_of(int64_t den)
 {
@@ -282,7 +273,7 @@ static int prepare(decoder_t *d, char **selected, unsigned n_selected)
         mi->msg = msg;
         mi->ext = (msg->id & DBC_EXTENDED_ID_FLAG) != 0U;
         mi->raw_id = msg->id & 0x1FFFFFFFU;
-        mi->pgn = mi->ext ? j1939_pgn(mi->raw_id) : 0U;
+        mi->pgn = mi->ext ? pfe_j1939_pgn(mi->raw_id) : 0U;
         mi->selected = n_selected == 0U;
         for (unsigned k = 0U; k < n_selected; k++) {
             mi->selected = mi->selected || (strcmp(selected[k], msg->name) == 0);
@@ -324,7 +315,7 @@ static const msg_info_t *find_message(const decoder_t *d, uint32_t id)
 {
     const bool ext = (id & CANLOG_EFF_FLAG) != 0U;
     const uint32_t raw = id & (ext ? CANLOG_EFF_MASK : CANLOG_SFF_MASK);
-    const uint32_t pgn = ext ? j1939_pgn(raw) : 0U;
+    const uint32_t pgn = ext ? pfe_j1939_pgn(raw) : 0U;
     for (size_t m = 0U; m < d->n_msgs; m++) {
         const msg_info_t *mi = &d->msgs[m];
         if (mi->ext != ext) {

@@ -133,10 +133,8 @@ int main(int argc, char **argv)
             bad = cli_parse_ul(v, 0U, 253U, &address);
         } else if (strcmp(a, "--save-interval-ms") == 0) {
             bad = cli_parse_ul(v, 1000U, 3600000U, &interval);
-        } else if (strcmp(a, "--vehicles") == 0) {
-            bad = cli_parse_ul(v, 1U, PFE_MAX_VEHICLES, &vehicles);
-        } else if (strcmp(a, "--position") == 0) {
-            bad = cli_parse_ul(v, 0U, PFE_MAX_VEHICLES - 1U, &position);
+        } else if (cli_platoon_option(a, v, &vehicles, &position, NULL, &bad)) {
+            /* --vehicles, --position */
         } else if (strcmp(a, "--gap-cm") == 0) {
             bad = cli_parse_ul(v, 0U, 100000U, &gap_cm);
         } else if (strcmp(a, "--duration-s") == 0) {

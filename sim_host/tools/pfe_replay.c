@@ -126,6 +126,7 @@
 #include <linux/can/raw.h>
 
 #include "hal/socketcan/hal_socketcan.h"
+#include "firmware/pfe_can.h"
 #include "lib/log/log.h"
 #include "lib/lateness.h"
 
@@ -260,17 +261,6 @@ static int parse_u64(const char *s, int base, uint64_t max, uint64_t *out)
     return 0;
 }
 
-/* J1939 PGN of a 29-bit id: PDU1 (PF < 240) without its destination byte. */
-static uint32_t j1939_pgn(uint32_t id29)
-{
-    const uint32_t pf = (id29 >> 16) & 0xFFU;
-    uint32_t pgn = (id29 >> 8) & 0x3FFFFU;
-    if (pf < 240U) {
-        pgn &= 0x3FF00U;
-    }
-    return pgn;
-}
-
 static bool frame_selected(const replay_t *rp, const canlog_frame_t *f)
 {
     if (rp->n_filters == 0U) {
@@ -284,7 +274,7 @@ static bool frame_selected(const replay_t *rp, const canlog_frame_t *f)
     for (unsigned i = 0U; i < rp->n_filters; i++) {
         const filter_t *flt = &rp->filters[i];
         if (flt->pgn) {
-            if (eff && (j1939_pgn(raw) == flt->id)) {
+            if (eff && (pfe_j1939_pgn(raw) == flt->id)) {
                 return true;
             }
         } else if ((eff == ((flt->id & CANLOG_EFF_FLAG) != 0U)) &&

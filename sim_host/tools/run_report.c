@@ -65,6 +65,7 @@
 #include <sys/wait.h>
 
 #include "lib/cli_args.h"
+#include "lib/plot.h"
 #include "firmware/pfe_can.h"
 #include "firmware/pfe_codec.h"
 #include "ref/bus_ref.h"
@@ -258,12 +259,8 @@ static int parse_args(int argc, char **argv, options_t *o)
             bad = cli_parse_double(v, 0.0, 1e6, &o->warmup_s);
         } else if (strcmp(a, "--rate-floor-l-h") == 0) {
             bad = cli_parse_double(v, 0.0, 3212.75, &o->floor_l_h);
-        } else if (strcmp(a, "--vehicles") == 0) {
-            bad = cli_parse_ul(v, 1U, PFE_MAX_VEHICLES, &o->vehicles);
-        } else if (strcmp(a, "--position") == 0) {
-            bad = cli_parse_ul(v, 0U, PFE_MAX_VEHICLES - 1U, &o->position);
-        } else if (strcmp(a, "--gap-m") == 0) {
-            bad = cli_parse_double(v, 0.0, 642.55, &o->gap_m);
+        } else if (cli_platoon_option(a, v, &o->vehicles, &o->position, &o->gap_m, &bad)) {
+            /* --vehicles, --position, --gap-m */
         } else if (strcmp(a, "--out") == 0) {
             o->prefix = v;
             bad = (v[0] == '\0') || (strlen(v) > PATH_MAX_LEN - 16U);
@@ -573,19 +570,6 @@ static int close_out(FILE *f, const char *path)
     return 0;
 }
 
-/* A gnuplot single-quoted string: quotes doubled. */
-static void gp_quoted(FILE *f, const char *s)
-{
-    fputc('\'', f);
-    for (; *s != '\0'; s++) {
-        if (*s == '\'') {
-            fputc('\'', f);
-        }
-        fputc(*s, f);
-    }
-    fputc('\'', f);
-}
-
 /* What the CSV holds, for a plot of what is there: values per column
  * (speed, grade, module rate, reference rate, module total, reference
  * total) and the span of its times. */
@@ -646,7 +630,7 @@ static int write_plot_script(const char *gp_path, const char *csv_path, const ch
     fprintf(f, "# Written by run_report: gnuplot %s\n", gp_path);
     fprintf(f, "set terminal pngcairo noenhanced size 1100,%d font 'sans,10'\nset output ",
             (prediction_csv != NULL) ? 1750 : 1400);
-    gp_quoted(f, png_path);
+    plot_quoted(f, png_path);
     fprintf(f, "\nset datafile separator ','\nset datafile missing 'NA'\n");
     fprintf(f, "set grid\nset key top right opaque box\nset lmargin 12\nset xlabel 'time (s)'\n");
     /* an explicit time range: one row, or none with values, is a range too */
@@ -654,9 +638,9 @@ static int write_plot_script(const char *gp_path, const char *csv_path, const ch
     fprintf(f, "set xrange [%.3f:%.3f]\n", (span > 0.0) ? pd->t_first : (pd->t_first - 1.0),
             (span > 0.0) ? pd->t_last : (pd->t_last + 1.0));
     fprintf(f, "set multiplot layout %d,1 title ", (prediction_csv != NULL) ? 5 : 4);
-    gp_quoted(f, title);
+    plot_quoted(f, title);
     fprintf(f, " font 'sans,12'\ncsv = ");
-    gp_quoted(f, csv_path);
+    plot_quoted(f, csv_path);
     fprintf(f, "\n");
     static const int speed[] = {2};
     static const char *const speed_st[] = {

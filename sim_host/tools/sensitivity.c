@@ -32,6 +32,7 @@
 #include <sys/wait.h>
 
 #include "lib/cli_args.h"
+#include "lib/plot.h"
 #include "lib/road_csv.h"
 #include "ref/sensitivity_run.h"
 
@@ -290,19 +291,6 @@ static int write_csv(const char *path, const road_run_t *rr, const sens_setup_t 
     return 0;
 }
 
-/* A gnuplot string literal in single quotes (a quote inside is doubled). */
-static void gp_string(FILE *f, const char *s)
-{
-    fputc('\'', f);
-    for (; *s != '\0'; s++) {
-        if (*s == '\'') {
-            fputc('\'', f);
-        }
-        fputc(*s, f);
-    }
-    fputc('\'', f);
-}
-
 /* One curve: the rows of parameter name, x and y columns of the CSV, rows
  * of stalled cases left out. */
 static void gp_series(FILE *f, int first, const char *name, int x_col, int y_col, int point,
@@ -312,7 +300,7 @@ static void gp_series(FILE *f, int first, const char *name, int x_col, int y_col
     fprintf(f, " using (ok('%s') ? column(%d) : NaN):(ok('%s') ? column(%d) : NaN)"
                " with linespoints lw 2 pt %d ps 1.2 title ",
             name, x_col, name, y_col, point);
-    gp_string(f, title);
+    plot_quoted(f, title);
 }
 
 /* The y range of one panel: the curves' own, widened to at least 2 units
@@ -357,9 +345,9 @@ static int write_gp(const char *path, const char *csv, const char *png, const ro
     }
     fprintf(f, "# Written by sensitivity; run with: gnuplot %s\n", path);
     fprintf(f, "set terminal pngcairo size 1400,1000 font 'sans,11'\nset output ");
-    gp_string(f, png);
+    plot_quoted(f, png);
     fprintf(f, "\ncsv = ");
-    gp_string(f, csv);
+    plot_quoted(f, csv);
     /* Column 1 is the parameter's name, column 12 says whether the case stalled. */
     fprintf(f, "\nset datafile separator ','\nset grid\nset key below horizontal\n"
                "set offsets 0, 0, graph 0.05, graph 0.05\n"
@@ -372,7 +360,7 @@ static int write_gp(const char *path, const char *csv, const char *png, const ro
         title[sizeof title - 1U] = '\0'; /* a long title is cut, not an error */
     }
     fprintf(f, "set multiplot layout 2,2 title ");
-    gp_string(f, title);
+    plot_quoted(f, title);
     fprintf(f, " font 'sans,14'\n");
     static const struct {
         const char *name, *title;
