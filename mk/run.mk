@@ -46,11 +46,6 @@ GNUPLOT_STAMP := $(BUILD)/.gnuplot-ok
 DRIVE_FLAGS := --vehicles 5 --position 1 --gap-m 10 --set-speed-kmh 90 \
                --speed-noise-kmh 0.05 --pitch-noise-deg 0.02 --seed 1
 
-CAPTURE_SRC := sim_host/lib/capture.c $(LOG_SRC) sim_host/ref/bus_ref.c sim_host/ref/ref_model.c
-CAPTURE_HDR := sim_host/lib/capture.h $(LOG_HDR) sim_host/ref/bus_ref.h sim_host/ref/ref_model.h
-# run_report's judge of the prediction (its header lists what it needs)
-PJ_SRC := sim_host/ref/prediction_judge.c sim_host/lib/plot.c
-PJ_HDR := sim_host/ref/prediction_judge.h
 
 .PHONY: run run-sim drive-logs logs test-drive-logs test-run-host test-record-vm
 
@@ -62,17 +57,12 @@ $(GNUPLOT_STAMP): scripts/deps.sh
 	@touch $@
 
 # Only listens: built without the real-bus guard, which it does not need.
-$(HOST)/pfe_record: sim_host/tools/pfe_record.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -o $@ $<
 
-$(HOST)/run_report: sim_host/tools/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(PJ_SRC) $(PJ_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
 
 # ---------------------------------------------------------------- drive logs
 
 # Written only on request: the committed files are the reference.
+## regenerate the committed drive logs sim_host/data/logs/*.log.gz
 drive-logs: $(HOST)/drivegen
 	@mkdir -p $(LOG_DIR)
 	@set -e; for r in $(ROAD_NAMES); do \
@@ -86,6 +76,7 @@ $(LOG_DIR)/%.log: $(LOGS_SRC)/%.log.gz
 	@mkdir -p $(@D)
 	gzip -dc $< > $@
 
+## expand the committed drive logs into build/logs/
 logs: $(addprefix $(LOG_DIR)/,$(addsuffix .log,$(ROAD_NAMES)))
 
 # The bundled run drive: the hilly drive's first RUN_DRIVE_S seconds (its
@@ -102,6 +93,7 @@ $(RUN_DIR)/hilly_run.log: $(HOST)/drivegen $(ROADS)/hilly.csv $(lastword $(MAKEF
 	    --out $(RUN_DIR)/hilly_preview.log 2> /dev/null
 	awk -v end="($$((1700000000 + $(RUN_DRIVE_S))).000000)" '$$1 < end' $(RUN_DIR)/hilly_preview.log > $@
 
+## regenerating each committed drive log gives it byte for byte
 test-drive-logs: $(HOST)/drivegen
 	@mkdir -p $(BUILD)/logs-check
 	@set -e; for r in $(ROAD_NAMES); do \
@@ -116,20 +108,11 @@ test-drive-logs: $(HOST)/drivegen
 
 # What the bus part gets (scripts/run_drive.sh): static programs, the drive.
 RUN_PAYLOAD_FILES := pfe_ecu pfe_record pfe_replay drive.log run_drive.sh
-RUN_STATIC := $(WARN) $(HOST_INC) -static -O2
+$(call host_payload,$(RUN_PAYLOAD),pfe_ecu pfe_record pfe_replay)
 
-$(RUN_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(RUN_STATIC) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
 
-$(RUN_PAYLOAD)/pfe_record: sim_host/tools/pfe_record.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(RUN_STATIC) -o $@ $<
 
 # The replayer, static as mk/replay.mk builds it for its own VM tests.
-$(RUN_PAYLOAD)/pfe_replay: $(REPLAY_PAYLOAD)/pfe_replay
-	@mkdir -p $(@D)
-	cp $< $@
 
 $(RUN_PAYLOAD)/run_drive.sh: scripts/run_drive.sh
 	@mkdir -p $(@D)
@@ -141,6 +124,7 @@ $(RUN_PAYLOAD)/drive.log: $(RUN_LOG)
 	@mkdir -p $(@D)
 	cp $< $@
 
+## the module on vcan0 fed the bundled hilly drive, judged: summary, CSV, plot, verdict
 run: $(HOST)/run_report $(GNUPLOT_STAMP) $(addprefix $(RUN_PAYLOAD)/,$(RUN_PAYLOAD_FILES))
 	@t0=$$(date +%s); \
 	VCAN_VM_DIR=$(VCAN_VM_DIR) sh scripts/run_drive.sh --payload $(RUN_PAYLOAD) --out $(RUN_DIR) \
@@ -150,6 +134,7 @@ run: $(HOST)/run_report $(GNUPLOT_STAMP) $(addprefix $(RUN_PAYLOAD)/,$(RUN_PAYLO
 
 # The earlier `make run`: the platoon simulation over the hilly road, fixed
 # point against double, no bus.
+## simulate the bundled hilly road, fixed point against double, no bus
 run-sim: $(HOST)/platoon_sim
 	$(HOST)/platoon_sim --road $(ROADS)/hilly.csv --vehicles 5 --set-speed-kmh 90 \
 	    --trace $(BUILD)/run_hilly_trace.csv
@@ -157,20 +142,10 @@ run-sim: $(HOST)/platoon_sim
 
 # ---------------------------------------------------------------- tests
 
-$(HOSTSAN)/test_capture: tests/host/test_capture.c $(CAPTURE_SRC) $(CAPTURE_HDR) sim_host/ref/drive_trace.c \
-        sim_host/ref/drive_trace.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(CAPTURE_SRC) sim_host/ref/drive_trace.c \
-	    $(FW_SRC) -lcmocka -lm
 
-$(HOSTSAN)/run_report: sim_host/tools/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(PJ_SRC) $(PJ_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/tools/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
 
-$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/lib/capture.c $(LOG_SRC) sim_host/lib/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/lib/capture.c $(LOG_SRC) $(FW_SRC) -lm
 
+## capture reader, noise, run_report and its prediction judge on the firmware ECU run offline
 test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
         $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP) $(HOST)/drivegen $(HOST)/run_report
 	@echo "== host: test_capture"; $(HOSTSAN)/test_capture
@@ -183,13 +158,12 @@ test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offl
 
 # The recorder in the VM, next to candump -L, on every kind of frame.
 RECORD_PAYLOAD := $(BUILD)/record-vm
-$(RECORD_PAYLOAD)/pfe_record: sim_host/tools/pfe_record.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(RUN_STATIC) -o $@ $<
+$(call host_payload,$(RECORD_PAYLOAD),pfe_record)
 $(RECORD_PAYLOAD)/record_vs_candump.sh: tests/e2e/record_vs_candump.sh
 	@mkdir -p $(@D)
 	cp $< $@
 
+## pfe_record against candump -L on the same traffic, in the VM
 test-record-vm: $(RECORD_PAYLOAD)/pfe_record $(RECORD_PAYLOAD)/record_vs_candump.sh
 	VCAN_VM_DIR=$(VCAN_VM_DIR) $(VCAN_VM) --time --timeout 300 --payload $(abspath $(RECORD_PAYLOAD)) -- \
 	    sh $(abspath $(RECORD_PAYLOAD))/record_vs_candump.sh

@@ -6,11 +6,11 @@
 # HOSTSAN, ROADS, FW_SRC, FW_HDR, HOST_CFLAGS, SAN_CFLAGS, DEPS_STAMP):
 #
 #   include mk/thesis.mk
-#   test: thesis-test
+#   test: test-thesis
 #   bench: thesis-bench
 #
 # Targets:
-#   thesis-test     the node-model and fuel-bound tests (ASan, UBSan), the
+#   test-thesis     the node-model and fuel-bound tests (ASan, UBSan), the
 #                   property test over 250 seeded hilly routes included, and
 #                   the bundled routes regenerated and compared byte for byte
 #   thesis-bench    instructions of node and object model over the 12 km
@@ -29,43 +29,22 @@
 #                   against flat and detour against bypass (not guaranteed:
 #                   the thesis's bounds' assumptions fail, exit 3)
 
-THESIS_SRC := sim_host/ref/node_model.c sim_host/ref/fuel_bounds.c sim_host/lib/route_gen.c \
-              sim_host/ref/ref_model.c sim_host/lib/road_csv.c
-THESIS_HDR := sim_host/ref/node_model.h sim_host/ref/fuel_bounds.h sim_host/lib/route_gen.h \
-              sim_host/ref/ref_model.h sim_host/lib/road_csv.h
 ROUTES := sim_host/data/routes
 ROUTE_NAMES := ridge detour rolling bypass
 THESIS_ROADS := $(foreach r,$(ROAD_NAMES),--road $(ROADS)/$(r).csv)
 THESIS_BENCH_N := 5 10 20 50
 VALGRIND_STAMP := $(BUILD)/.deps-valgrind
 
-.PHONY: thesis-test thesis-bench thesis-report
+.PHONY: test-thesis thesis-bench thesis-report
 
-$(HOST)/platoon_compare: sim_host/tools/platoon_compare.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/tools/platoon_compare.c $(THESIS_SRC) $(FW_SRC) -lm
 
-$(HOST)/route_choice: sim_host/tools/route_choice.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/tools/route_choice.c $(THESIS_SRC) $(FW_SRC) -lm
 
-$(HOST)/routegen: sim_host/tools/routegen.c sim_host/lib/route_gen.c sim_host/lib/route_gen.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -o $@ sim_host/tools/routegen.c sim_host/lib/route_gen.c
 
-$(HOSTSAN)/routegen: sim_host/tools/routegen.c sim_host/lib/route_gen.c sim_host/lib/route_gen.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -o $@ sim_host/tools/routegen.c sim_host/lib/route_gen.c
 
-$(HOSTSAN)/test_node_model: tests/host/test_node_model.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(THESIS_SRC) $(FW_SRC) -lcmocka -lm
 
-$(HOSTSAN)/test_fuel_bounds: tests/host/test_fuel_bounds.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(THESIS_SRC) $(FW_SRC) -lcmocka -lm
 
-thesis-test: $(HOSTSAN)/test_node_model $(HOSTSAN)/test_fuel_bounds $(HOSTSAN)/routegen
+## node model and fuel bounds tests, the 250-route property test, the bundled routes regenerated
+test-thesis: $(HOSTSAN)/test_node_model $(HOSTSAN)/test_fuel_bounds $(HOSTSAN)/routegen
 	@echo "== host: test_node_model"; $(HOSTSAN)/test_node_model $(ROADS)
 	@echo "== host: test_fuel_bounds"; $(HOSTSAN)/test_fuel_bounds
 	@echo "== host: bundled routes against routegen"
@@ -81,6 +60,7 @@ $(VALGRIND_STAMP): scripts/deps.sh
 
 # Instruction counts: callgrind counts only while node_sim_run or
 # object_sim_run runs (loading the road and the rest are left out).
+## bench: instructions of the node and object models for N = 5, 10, 20, 50
 thesis-bench: $(HOST)/platoon_compare $(VALGRIND_STAMP)
 	@set -e; mkdir -p $(BUILD)/callgrind; for n in $(THESIS_BENCH_N); do \
 	    for m in node object; do \
@@ -99,6 +79,7 @@ thesis-bench: $(HOST)/platoon_compare $(VALGRIND_STAMP)
 	done
 	@$(HOST)/platoon_compare --bench --repeat 21 --road $(ROADS)/hilly.csv --vehicles 5
 
+## the thesis's tables 5.1 to 5.5 on the three roads, and the route choice on the bundled routes
 thesis-report: $(HOST)/platoon_compare $(HOST)/route_choice
 	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5
 	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5 --length-m 16.5 --repeat 1

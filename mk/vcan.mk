@@ -5,11 +5,11 @@
 #
 #   include mk/m4.mk
 #   include mk/vcan.mk
-#   test: vcan-test
+#   test: test-vcan
 #
-# or try it alone:  make -f mk/vcan.mk vcan-test
+# or try it alone:  make -f mk/vcan.mk test-vcan
 #
-# This machine's kernel has no CAN at all, so `vcan-test` runs everything
+# This machine's kernel has no CAN at all, so `test-vcan` runs everything
 # through scripts/vcan_vm.sh: natively where this machine can have a vcan0,
 # else in one boot of Debian's kernel under QEMU (TCG, about 10 s). One boot
 # runs every check, through a driver script (tests/e2e/vcan_checks.sh):
@@ -26,8 +26,8 @@
 # san/lib/, and the driver.
 #
 # Targets:
-#   vcan-test         build, run all of the above, print the VM's run time
-#   vcan-test-native  the ASan + UBSan builds, run right here: test_guard
+#   test-vcan         build, run all of the above, print the VM's run time
+#   test-vcan-native  the ASan + UBSan builds, run right here: test_guard
 #                     (vcan and slcan tests skipped on a kernel without CAN),
 #                     test_hal_socketcan (exit 77, skipped, without vcan0)
 #   vcan-build        build both flavours, run nothing
@@ -168,42 +168,49 @@ $(VCAN_DRIVER): $(VCAN_ROOT)/tests/e2e/vcan_checks.sh | $(VCAN_PAYLOAD)
 $(VCAN_PAYLOAD):
 	mkdir -p $@
 
-.PHONY: vcan-help vcan-deps vcan-build vcan-test vcan-test-native vcan-clean vcan-vm-clean
+.PHONY: vcan-help vcan-deps vcan-build test-vcan test-vcan-native vcan-clean vcan-vm-clean
 
+## the vcan rules' own targets (mk/vcan.mk)
 vcan-help:
 	@echo "mk/vcan.mk: the SocketCAN backend on vcan0; see its header."
-	@echo "  vcan-test         static tests + can-utils checks in one run of scripts/vcan_vm.sh"
-	@echo "  vcan-test-native  ASan/UBSan builds on this machine (skips what needs vcan0)"
+	@echo "  test-vcan         static tests + can-utils checks in one run of scripts/vcan_vm.sh"
+	@echo "  test-vcan-native  ASan/UBSan builds on this machine (skips what needs vcan0)"
 	@echo "  vcan-build        build both flavours"
 	@echo "  vcan-deps         install the Debian packages"
 	@echo "  vcan-clean        remove $(VCAN_OUT)"
 	@echo "  vcan-vm-clean     remove the VM's cache $(VCAN_VM_DIR)"
 
+## install the packages of the vcan tests and of the VM
 vcan-deps:
 	@$(VCAN_ROOT)/scripts/deps.sh qemu-system-x86 busybox-static cpio can-utils binutils
 
+## build the vcan tests, both flavours, run nothing
 vcan-build: $(VCAN_STATIC_TESTS) $(VCAN_DRIVER) $(VCAN_SAN_TESTS) $(VCAN_SAN_LIBS)
 
 # The time printed is the whole vcan_vm.sh run: VM boot, tests, power-off
 # (vcan_vm.sh --time adds the boot-to-command split).
-vcan-test: $(VCAN_STATIC_TESTS) $(VCAN_DRIVER) $(VCAN_SAN_TESTS) $(VCAN_SAN_LIBS)
+## the SocketCAN backend on vcan0 in the VM: guard, conformance, can-utils round trips
+test-vcan: $(VCAN_STATIC_TESTS) $(VCAN_DRIVER) $(VCAN_SAN_TESTS) $(VCAN_SAN_LIBS)
 	@t0=$$(date +%s%N); \
 	VCAN_VM_DIR=$(VCAN_VM_DIR) $(VCAN_VM) --time --timeout $(VCAN_TIMEOUT_S) \
 	    --payload $(VCAN_PAYLOAD) $(VCAN_VM_FLAGS) -- $(VCAN_DRIVER) $(VCAN_IF); rc=$$?; \
 	t1=$$(date +%s%N); ms=$$(( (t1 - t0) / 1000000 )); \
-	echo "vcan-test: vcan_vm.sh run took $$((ms / 1000)).$$(( (ms % 1000) / 100 )) s, exit $$rc"; \
+	echo "test-vcan: vcan_vm.sh run took $$((ms / 1000)).$$(( (ms % 1000) / 100 )) s, exit $$rc"; \
 	exit $$rc
 
 # 77: test_hal_socketcan found no vcan0 (skipped).
-vcan-test-native: $(VCAN_SAN_TESTS)
+## the vcan tests' ASan and UBSan builds run here (what needs vcan0 skipped)
+test-vcan-native: $(VCAN_SAN_TESTS)
 	$(VCAN_PAYLOAD)/san/test_guard $(VCAN_IF)
 	@$(VCAN_PAYLOAD)/san/test_hal_socketcan $(VCAN_IF); rc=$$?; \
-	if [ $$rc -eq 77 ]; then echo "vcan-test-native: test_hal_socketcan skipped (no $(VCAN_IF))"; \
+	if [ $$rc -eq 77 ]; then echo "test-vcan-native: test_hal_socketcan skipped (no $(VCAN_IF))"; \
 	elif [ $$rc -ne 0 ]; then exit $$rc; fi
 
+## remove the vcan outputs
 vcan-clean:
 	rm -rf $(VCAN_OUT)
 
+## remove the VM's cache (kernel, initramfs)
 vcan-vm-clean:
 	rm -rf $(VCAN_VM_DIR)
 

@@ -20,7 +20,7 @@
  * the bus as candump -L would show it, the log's frames and the module's.
  * The Cortex-M4 image build/m4/pfe_ecu_mps2.elf runs the same code on the
  * same log with the same options and must write the same OUT byte for byte
- * (make check-replay; the image reads candump -L and the printed form).
+ * (make test-replay-m4; the image reads candump -L and the printed form).
  *
  * Prints one summary line on standard output (hal_replay_ecu_summary()),
  * then what identification found (mass, aux power, converged, samples).

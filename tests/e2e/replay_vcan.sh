@@ -1,7 +1,7 @@
 #!/bin/sh
 # pfe_replay on vcan: round trips, other formats, pacing against canplayer,
 # the real-bus guard. Runs from its payload folder on a machine with vcan0
-# and vcan1 up (scripts/vcan_vm.sh; `make replay-vcan-test`).
+# and vcan1 up (scripts/vcan_vm.sh; `make test-replay-vcan`).
 #
 #   replay_vcan.sh
 #
