@@ -39,7 +39,7 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
 .PHONY: all tools deps run test test-host test-m4 firmware bench bench-figures test-bench-check help clean test-image \
-        test-selfcheck test-replay-m4 test-e2e test-bus-faults
+        test-selfcheck test-replay-m4 test-e2e test-bus-faults test-asserts
 .DEFAULT_GOAL := all
 
 all: tools
@@ -112,15 +112,26 @@ $(call host_test,test_nvm_faults,tests/host/test_nvm_faults.c $(ECU_LOOP_SRC) $(
 # The HAL conformance suite on the test backend (on SocketCAN: mk/vcan.mk),
 # and on the replay backend, with the backend's own tests.
 $(call host_test,test_hal_fake,tests/hal/test_hal_fake.c tests/hal/hal_conformance.c $(HAL_FAKE_SRC))
+$(call host_test,test_ecu_loop,tests/hal/test_ecu_loop.c $(ECU_LOOP_SRC) $(HAL_FAKE_SRC))
 $(call host_test,test_hal_replay,tests/hal/test_hal_replay.c tests/hal/hal_conformance.c $(HAL_REPLAY_SRC))
 
 HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_accuracy \
                   $(HOSTSAN)/test_road_csv $(HOSTSAN)/roadgen $(HOSTSAN)/test_dbc_codec \
-                  $(HOSTSAN)/test_hal_fake $(HOSTSAN)/test_hal_replay $(HOSTSAN)/test_predict \
+                  $(HOSTSAN)/test_hal_fake $(HOSTSAN)/test_hal_replay $(HOSTSAN)/test_ecu_loop $(HOSTSAN)/test_predict \
                   $(HOSTSAN)/test_identify_ref
 
-## host tests under ASan and UBSan: firmware units, accuracy, prediction, road loader, codec against the DBC, HAL conformance
-test-host: $(HOST_TEST_BINS)
+# No assert compares without printing the values (scripts/check_asserts.py
+# over tests/); the check shown to fail on planted comparisons and the
+# asserts of tests/test_assert.h shown to print them (tests/asserts/).
+$(call host_test,test_assert_demo,tests/asserts/test_assert_demo.c)
+
+## no bare comparison in a test's assert (scripts/check_asserts.py), the check shown to catch planted ones
+test-asserts: $(HOSTSAN)/test_assert_demo
+	@echo "== host: no bare comparison in an assert"; python3 scripts/check_asserts.py tests
+	@sh tests/asserts/check_asserts_test.sh $(HOSTSAN)/test_assert_demo
+
+## host tests under ASan and UBSan: firmware units, accuracy, prediction, road loader, codec against the DBC, HAL conformance, the ECU loop, the asserts check
+test-host: $(HOST_TEST_BINS) test-asserts
 	@set -e; for t in $(UNIT_TESTS); do echo "== host unit: $$t"; $(HOSTSAN)/unit_$$t; done
 	@echo "== host: test_accuracy"; $(HOSTSAN)/test_accuracy $(ROADS)
 	@echo "== host: test_predict"; $(HOSTSAN)/test_predict $(ROADS)
@@ -129,6 +140,7 @@ test-host: $(HOST_TEST_BINS)
 	@echo "== host: test_dbc_codec"; $(HOSTSAN)/test_dbc_codec can_dbc/pfe.dbc
 	@echo "== host: HAL conformance on hal/fake"; $(HOSTSAN)/test_hal_fake
 	@echo "== host: HAL conformance on hal/replay"; $(HOSTSAN)/test_hal_replay
+	@echo "== host: the ECU loop on hal/fake"; $(HOSTSAN)/test_ecu_loop
 
 # ---------------------------------------------------------------- Cortex-M4 (QEMU mps2-an386)
 
@@ -244,12 +256,12 @@ $(FAULTS_PAYLOAD)/bus_faults.sh: tests/e2e/bus_faults.sh
 
 ## bus faults in the VM's kernel: vcan0 down and up, a flood, an address conflict, during a drive
 test-bus-faults: $(addprefix $(FAULTS_PAYLOAD)/,pfe_ecu pfe_replay pfe_decode pfe.dbc drive.log bus_faults.sh)
-	$(VCAN_VM) --time --timeout 300 --payload $(abspath $(FAULTS_PAYLOAD)) -- \
+	$(VCAN_VM) --time --timeout 900 --payload $(abspath $(FAULTS_PAYLOAD)) -- \
 	    sh $(abspath $(FAULTS_PAYLOAD))/bus_faults.sh
 
 ## the host ECU on vcan in the VM, fed a drive by canplayer, recorded by candump, judged by ecu_check
 test-e2e: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log faults.log ecu_vcan.sh)
-	$(VCAN_VM) --time --timeout 500 --payload $(abspath $(E2E_PAYLOAD)) -- \
+	$(VCAN_VM) --time --timeout 1200 --payload $(abspath $(E2E_PAYLOAD)) -- \
 	    sh $(abspath $(E2E_PAYLOAD))/ecu_vcan.sh
 
 # One log through the firmware on the host and in the Cortex-M4 image, in

@@ -20,7 +20,12 @@
  *   Fb_max_platoon    eq. 4.5   sum of Fb_max_i (= N Fb_max for equal trucks)
  *   air drag          eq. 4.6   1/2 rho v^2 sum cw_i Af_i (1 - phi_i(d)/100)
  *   rolling           eq. 4.8   cr M g (cos alpha ~ 1; cr may differ per truck)
- *   grade             eq. 4.10  M g alpha_p (sin alpha ~ alpha ~ grade)
+ *   grade             eq. 4.10  M g alpha_p (sin alpha ~ alpha ~ grade), one
+ *                     grade for the platoon: trucks of a length that keep a
+ *                     constant time headway meet every grade at the speed
+ *                     the platoon met it, so summed over the platoon's
+ *                     passage of a point the grade force is M g alpha there
+ *                     (README, "The thesis's claims, checked")
  *   fuel              eq. 4.14  delta (P + sum Paux_i) / (eta_mean rho_d)
  *
  * The aggregate is stored as a pfe_vehicle_t so that the chapter 3 force and

@@ -56,9 +56,18 @@ int hal_ecu_loop_init(hal_ecu_loop_t *loop, pfe_ecu_t *ecu, const pfe_ecu_config
 uint32_t hal_ecu_loop_step(hal_ecu_loop_t *loop, uint64_t now_us)
 {
     pfe_ecu_t *ecu = loop->ecu;
-    hal_can_rx_t rx;
-    for (uint32_t k = 0U; (k < HAL_ECU_LOOP_RX_MAX) && (hal_can_receive(loop->can, &rx) == 0); k++) {
-        pfe_ecu_receive(ecu, &rx.frame, now_us);
+    for (uint32_t k = 0U; k < HAL_ECU_LOOP_RX_MAX; k++) {
+        if (!loop->have_held) {
+            if (hal_can_receive(loop->can, &loop->held) != 0) {
+                break;
+            }
+            loop->have_held = true;
+        }
+        if (loop->held.timestamp_us > now_us) {
+            break; /* received after this deadline: it belongs to a later pass */
+        }
+        loop->have_held = false;
+        pfe_ecu_receive(ecu, &loop->held.frame, now_us);
     }
     hal_can_stats_t st;
     hal_can_get_stats(loop->can, &st);

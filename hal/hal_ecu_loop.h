@@ -8,10 +8,16 @@
  * hal_ecu_loop_init() installs the ECU's receive filters
  * (pfe_ecu_rx_filters) on the handle, so that other traffic stays out.
  * One pass, hal_ecu_loop_step(), at each 10 ms deadline:
- *   1. the frames waiting on the CAN handle go into the ECU, stamped with
- *      the deadline (the ECU's clock; backends' receive clocks may differ),
- *      at most HAL_ECU_LOOP_RX_MAX of them: a flood cannot hold the tick (the
- *      rest waits, and what the backend then drops is counted);
+ *   1. the frames waiting on the CAN handle that were received by the
+ *      deadline go into the ECU, stamped with the deadline, at most
+ *      HAL_ECU_LOOP_RX_MAX of them: a flood cannot hold the tick (the rest
+ *      waits, and what the backend then drops is counted). A frame received
+ *      after the deadline (its timestamp_us on the backend's clock, which is
+ *      the caller's clock of now_us) is held for the next pass: a pass that
+ *      runs late, catching up on a missed deadline, must not show the ECU
+ *      a frame from its future (the speed of 10 ms later at this deadline
+ *      is a false acceleration). A backend without receive times (0) never
+ *      holds;
  *   2. frames the backend dropped since the last pass are reported;
  *   3. the ECU ticks; what it sends goes to the handle, refusals are
  *      reported as transmit drops;
@@ -23,6 +29,7 @@
 #ifndef HAL_ECU_LOOP_H
 #define HAL_ECU_LOOP_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "firmware/pfe_ecu.h"
@@ -36,6 +43,8 @@ typedef struct {
     hal_can_t *can;
     hal_nvm_t *nvm;
     hal_can_stats_t last;              /* backend counters at the previous pass */
+    hal_can_rx_t held;                 /* received after the last pass's deadline */
+    bool have_held;
     uint32_t nvm_failures;             /* saves the backend refused */
     int restored_slot;                 /* NVM slot restored from, -1 for none */
     uint32_t filters;                  /* receive filters the backend took */

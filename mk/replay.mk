@@ -33,7 +33,7 @@ REPLAY_PAYLOAD := $(REPLAY_OUT)/payload
 REPLAY_BENCH_PAYLOAD := $(REPLAY_OUT)/bench-payload
 REPLAY_BENCH_FRAMES ?= 1000000
 REPLAY_BENCH_RUNS ?= 5
-REPLAY_VM_TIMEOUT_S ?= 600
+REPLAY_VM_TIMEOUT_S ?= 1800
 
 
 .PHONY: test-replay test-replay-vcan replay-bench

@@ -37,7 +37,7 @@ RUN_LOG ?= $(RUN_DIR)/hilly_run.log
 RUN_EXPECT ?= $(LOGS_SRC)/hilly_run.expect
 RUN_JUNIT ?= $(RUN_DIR)/junit.xml
 RUN_REPORT_FLAGS ?=
-RUN_TIMEOUT_S ?= 600
+RUN_TIMEOUT_S ?= 1200
 GNUPLOT_STAMP := $(BUILD)/.gnuplot-ok
 
 # The committed drives: the thesis's three roads, a 5-truck platoon at
@@ -165,5 +165,5 @@ $(RECORD_PAYLOAD)/record_vs_candump.sh: tests/e2e/record_vs_candump.sh
 
 ## pfe_record against candump -L on the same traffic, in the VM
 test-record-vm: $(RECORD_PAYLOAD)/pfe_record $(RECORD_PAYLOAD)/record_vs_candump.sh
-	VCAN_VM_DIR=$(VCAN_VM_DIR) $(VCAN_VM) --time --timeout 300 --payload $(abspath $(RECORD_PAYLOAD)) -- \
+	VCAN_VM_DIR=$(VCAN_VM_DIR) $(VCAN_VM) --time --timeout 900 --payload $(abspath $(RECORD_PAYLOAD)) -- \
 	    sh $(abspath $(RECORD_PAYLOAD))/record_vs_candump.sh

@@ -10,7 +10,9 @@
 #   bench: thesis-bench
 #
 # Targets:
-#   test-thesis     the node-model and fuel-bound tests (ASan, UBSan), the
+#   test-thesis     the node-model, truck-length and fuel-bound tests (ASan,
+#                   UBSan; test_truck_length: object against node with 16.5 m
+#                   trucks on the three roads and 250 random routes), the
 #                   property test over 250 seeded hilly routes included, and
 #                   the bundled routes regenerated and compared byte for byte
 #   thesis-bench    instructions of node and object model over the 12 km
@@ -21,7 +23,9 @@
 #                   of 21 runs)
 #   thesis-report   the tables 5.1 to 5.5 analogues on the three roads with
 #                   N = 5, beside the thesis's values (5.4: both fuel models
-#                   fed the node model's mean speeds), the same without
+#                   fed the node model's mean speeds), the same with 16.5 m
+#                   trucks under both spacing policies (sim_host/ref/node_model.h),
+#                   the same without
 #                   drag reduction (the
 #                   cause of the uphill difference), and the route choice on
 #                   the bundled routes: ridge, detour and rolling; ridge
@@ -42,10 +46,12 @@ VALGRIND_STAMP := $(BUILD)/.deps-valgrind
 
 
 
+$(call host_test,test_truck_length,tests/host/test_truck_length.c)
 
-## node model and fuel bounds tests, the 250-route property test, the bundled routes regenerated
-test-thesis: $(HOSTSAN)/test_node_model $(HOSTSAN)/test_fuel_bounds $(HOSTSAN)/routegen
+## node model, truck length and fuel bounds tests, the 250-route property test, the bundled routes regenerated
+test-thesis: $(HOSTSAN)/test_node_model $(HOSTSAN)/test_truck_length $(HOSTSAN)/test_fuel_bounds $(HOSTSAN)/routegen
 	@echo "== host: test_node_model"; $(HOSTSAN)/test_node_model $(ROADS)
+	@echo "== host: test_truck_length"; $(HOSTSAN)/test_truck_length $(ROADS)
 	@echo "== host: test_fuel_bounds"; $(HOSTSAN)/test_fuel_bounds
 	@echo "== host: bundled routes against routegen"
 	@set -e; for r in $(ROUTE_NAMES); do \
@@ -83,6 +89,7 @@ thesis-bench: $(HOST)/platoon_compare $(VALGRIND_STAMP)
 thesis-report: $(HOST)/platoon_compare $(HOST)/route_choice
 	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5
 	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5 --length-m 16.5 --repeat 1
+	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5 --length-m 16.5 --spacing headway --repeat 1
 	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5 --no-drag-reduction --repeat 1
 	$(HOST)/route_choice $(ROUTES)/ridge.csv $(ROUTES)/detour.csv $(ROUTES)/rolling.csv; \
 	    rc=$$?; test $$rc -eq 0 -o $$rc -eq 3

@@ -33,6 +33,8 @@ void node_config_default(node_config_t *cfg, unsigned n_vehicles)
     cfg->time_gap_s = 0.4;
     cfg->standstill_m = 10.0 - (0.4 * 25.0); /* 10 m at 90 km/h: 0 m */
     cfg->length_m = 16.5;
+    cfg->spacing = NODE_SPACING_GAP;
+    cfg->headway_floor_m = 3.0;
     cfg->follow_kp_s2 = 1.0;
     cfg->follow_ki_s3 = 0.1;
     cfg->follow_kv_s = 1.0 / 0.4;
@@ -88,6 +90,12 @@ int node_config_check(const node_config_t *cfg, char *err, size_t err_len)
     if (!in_range(cfg->length_m, 0.0, 30.0)) {
         return bad(err, err_len, "truck length outside 0 .. 30 m");
     }
+    if ((cfg->spacing != NODE_SPACING_GAP) && (cfg->spacing != NODE_SPACING_HEADWAY)) {
+        return bad(err, err_len, "spacing policy unknown");
+    }
+    if (!in_range(cfg->headway_floor_m, 0.0, 100.0)) {
+        return bad(err, err_len, "headway policy's smallest gap outside 0 .. 100 m");
+    }
     if (!in_range(cfg->follow_kp_s2, 1e-9, 1000.0) || !in_range(cfg->follow_ki_s3, 1e-9, 1000.0) ||
         !in_range(cfg->follow_kv_s, 0.0, 1000.0)) {
         return bad(err, err_len, "follower gains not in (0, 1000]");
@@ -104,8 +112,16 @@ int node_config_check(const node_config_t *cfg, char *err, size_t err_len)
     return 0;
 }
 
+double node_headway_s(const node_config_t *cfg)
+{
+    return (cfg->length_m + cfg->standstill_m + (cfg->time_gap_s * cfg->set_speed_m_s)) / cfg->set_speed_m_s;
+}
+
 double node_desired_gap_m(const node_config_t *cfg, double speed_m_s)
 {
+    if (cfg->spacing == NODE_SPACING_HEADWAY) {
+        return fmax(cfg->headway_floor_m, (node_headway_s(cfg) * speed_m_s) - cfg->length_m);
+    }
     return cfg->standstill_m + (cfg->time_gap_s * speed_m_s);
 }
 
@@ -299,6 +315,7 @@ int node_sim_step(node_sim_t *s)
         const double ds = (v + v1) * dt / 2.0;
         const double w = on_road(x, ds, s->end_m);
         if (w > 0.0) {
+            s->brake_j[j] += (force < 0.0) ? -w * force * ds : 0.0;
             const double fuel_force = (t->mass_fuel * accel) + resist; /* eq. 3.7 */
             if (fuel_force > 0.0) {                                   /* eq. 3.9 */
                 s->fuel_l[j] += w * ((fuel_force * ds) + (t->power_aux * dt)) * t->fuel_per_j;
@@ -427,12 +444,55 @@ int object_sim_init(object_sim_t *s, const ref_platoon_t *pl, const pfe_cruise_c
     s->speed_m_s = initial_speed_m_s;
     s->min_speed_m_s = INFINITY;
     s->max_speed_m_s = -INFINITY;
+    s->grade_points = 1U;
     const ref_vehicle_t *o = &pl->object;
     const double hold = ref_object_resistance(pl, initial_speed_m_s, road->grade[0]);
     const double f0 = clamp(hold, -o->brake_max, ref_platoon_force_max(pl, initial_speed_m_s));
     ref_pi_init(&s->pi, o->mass * cruise->kp_milli_per_s / 1000.0,
                 o->mass * cruise->ki_milli_per_s2 / 1000.0, f0);
     return 0;
+}
+
+void object_sim_truck_grades(object_sim_t *s, unsigned n_points, double pitch_m)
+{
+    s->grade_points = (n_points < 1U) ? 1U : n_points;
+    s->grade_pitch_m = pitch_m;
+}
+
+void object_sim_policy_drag(object_sim_t *s, const node_config_t *cfg)
+{
+    s->policy_drag = cfg;
+}
+
+/* eq. 4.6 with phi_i of the policy's gap at speed v: the air drag
+ * coefficient (N per (m/s)^2) and the formation drag's (pfe_platoon.h). */
+static void policy_air_k(const node_config_t *cfg, double mass, double v, double *air_k, double *formation)
+{
+    const unsigned n = cfg->n_vehicles;
+    const double gap = node_desired_gap_m(cfg, v);
+    double k = 0.0, most = 0.0;
+    for (unsigned i = 0U; i < n; i++) {
+        ref_vehicle_t t;
+        ref_vehicle_init(&t, cfg->vehicle[i], cfg->env,
+                         (n > 1U) ? ref_drag_reduction_pct(cfg->drag, i, n, gap) : 0.0);
+        k += t.air_k;
+        most = fmax(most, t.air_k / t.mass);
+    }
+    *air_k = k;
+    *formation = fmax(0.0, (most * mass) - k);
+}
+
+static double object_grade(const object_sim_t *s, double at_m)
+{
+    if (s->grade_points <= 1U) {
+        return node_road_grade(s->road, at_m);
+    }
+    const double first = at_m + (((double)s->grade_points - 1.0) * s->grade_pitch_m / 2.0);
+    double sum = 0.0;
+    for (unsigned i = 0U; i < s->grade_points; i++) {
+        sum += node_road_grade(s->road, first - ((double)i * s->grade_pitch_m));
+    }
+    return sum / (double)s->grade_points;
 }
 
 int object_sim_step(object_sim_t *s)
@@ -449,8 +509,14 @@ int object_sim_step(object_sim_t *s)
     const double dt = s->step_s;
     const double x = s->position_m;
     const double mid = x + (v * dt / 2.0);
-    const double resist = ref_object_resistance(pl, v, node_road_grade(s->road, mid));
-    const double f_max = ref_platoon_force_max(pl, v);
+    double resist = ref_object_resistance(pl, v, object_grade(s, mid));
+    double f_max = ref_platoon_force_max(pl, v);
+    if (s->policy_drag != NULL) {
+        double k, formation;
+        policy_air_k(s->policy_drag, o->mass, v, &k, &formation);
+        resist += (k - o->air_k) * v * v;
+        f_max = fmax(ref_wheel_force_max(o->power_max, o->traction_max, v) - (formation * v * v), -o->brake_max);
+    }
     const double force = ref_pi_step(&s->pi, s->set_speed_m_s - v, dt, -o->brake_max, f_max);
     const double accel = clamp((force - resist) / o->mass, -ACCEL_MAX, ACCEL_MAX);
     const double v1 = clamp(v + (accel * dt), 0.0, SPEED_MAX);

@@ -11,6 +11,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #define EFF PFE_CAN_EFF_FLAG
 /* J1939: the 18 PGN bits, priority and source address masked out. */
 #define PGN_MASK (0x03FFFF00UL | EFF)
@@ -219,7 +221,7 @@ static void test_filter_matches_pgn_any_priority_and_source(void **state)
 {
     const pair_t *p = *state;
     const int idx = hal_can_add_filter(p->rx, CCVS1_SA00, PGN_MASK);
-    assert_true(idx >= 0);
+    ASSERT_GE(idx, 0);
     send_ok(p->tx, LFE1_SA00, 8U, 0x01U);            /* another PGN */
     send_ok(p->tx, 0x18FEF117UL | EFF, 8U, 0x02U);   /* CCVS1 from source 0x17 */
     send_ok(p->tx, 0x100U, 8U, 0x03U);               /* standard frame */
@@ -237,7 +239,7 @@ static void test_filter_matches_pgn_any_priority_and_source(void **state)
 static void test_filter_on_standard_id_checks_the_eff_flag(void **state)
 {
     const pair_t *p = *state;
-    assert_true(hal_can_add_filter(p->rx, 0x123U, 0x7FFUL | EFF) >= 0);
+    ASSERT_GE(hal_can_add_filter(p->rx, 0x123U, 0x7FFUL | EFF), 0);
     send_ok(p->tx, 0x123UL | EFF, 1U, 0x01U);        /* extended 0x123 */
     send_ok(p->tx, 0x124U, 1U, 0x02U);
     send_ok(p->tx, 0x123U, 1U, 0x03U);
@@ -250,8 +252,8 @@ static void test_frame_passes_if_any_filter_accepts(void **state)
     const pair_t *p = *state;
     const int a = hal_can_add_filter(p->rx, CCVS1_SA00, PGN_MASK);
     const int b = hal_can_add_filter(p->rx, LFE1_SA00, PGN_MASK);
-    assert_true(a >= 0);
-    assert_true(b >= 0);
+    ASSERT_GE(a, 0);
+    ASSERT_GE(b, 0);
     assert_int_not_equal(a, b);
     send_ok(p->tx, 0x18FEF203UL | EFF, 2U, 0x01U);
     send_ok(p->tx, SSI_SA13, 2U, 0x02U);
@@ -266,8 +268,8 @@ static void test_removed_filter_no_longer_accepts(void **state)
     const pair_t *p = *state;
     const int a = hal_can_add_filter(p->rx, CCVS1_SA00, PGN_MASK);
     const int b = hal_can_add_filter(p->rx, LFE1_SA00, PGN_MASK);
-    assert_true(a >= 0);
-    assert_true(b >= 0);
+    ASSERT_GE(a, 0);
+    ASSERT_GE(b, 0);
     assert_int_equal(hal_can_remove_filter(p->rx, a), 0);
     assert_int_equal(hal_can_remove_filter(p->rx, a), HAL_EINVAL);
     send_ok(p->tx, CCVS1_SA00, 1U, 0x01U);
@@ -298,7 +300,7 @@ static void test_filters_run_out_with_enospc(void **state)
     /* Proprietary B PGNs 0xFF00.., one per filter. */
     for (uint32_t k = 0U; k < HAL_CAN_MAX_FILTERS; k++) {
         idx[k] = hal_can_add_filter(p->rx, (0x18FF0000UL + (k << 8)) | EFF, PGN_MASK);
-        assert_true(idx[k] >= 0);
+        ASSERT_GE(idx[k], 0);
         for (uint32_t j = 0U; j < k; j++) {
             assert_int_not_equal(idx[j], idx[k]);
         }
@@ -306,7 +308,7 @@ static void test_filters_run_out_with_enospc(void **state)
     assert_int_equal(hal_can_add_filter(p->rx, CCVS1_SA00, PGN_MASK), HAL_ENOSPC);
     /* Freeing one slot makes room for exactly one. */
     assert_int_equal(hal_can_remove_filter(p->rx, idx[5]), 0);
-    assert_true(hal_can_add_filter(p->rx, CCVS1_SA00, PGN_MASK) >= 0);
+    ASSERT_GE(hal_can_add_filter(p->rx, CCVS1_SA00, PGN_MASK), 0);
     assert_int_equal(hal_can_add_filter(p->rx, LFE1_SA00, PGN_MASK), HAL_ENOSPC);
     /* All of them still work: the first, the last, the replacement; not the
      * removed one nor the refused one. */
@@ -335,7 +337,7 @@ static void test_timestamps_never_decrease(void **state)
     }
     for (uint32_t k = 0U; k < 32U; k++) {
         const hal_can_rx_t rx = expect_frame(p->rx, (0x18FF0000UL + k) | EFF, 1U, (uint8_t)k);
-        assert_true(rx.timestamp_us >= last);
+        ASSERT_GE(rx.timestamp_us, last);
         last = rx.timestamp_us;
     }
     /* A later frame is not stamped earlier, whatever happened in between. */
@@ -344,7 +346,7 @@ static void test_timestamps_never_decrease(void **state)
     }
     send_ok(p->tx, 0x001U, 0U, 0U);
     const hal_can_rx_t rx = expect_frame(p->rx, 0x001U, 0U, 0U);
-    assert_true(rx.timestamp_us >= last);
+    ASSERT_GE(rx.timestamp_us, last);
 }
 
 static void test_stats_count_frames(void **state)
@@ -384,19 +386,19 @@ static void test_clock_waits_reach_their_deadline(void **state)
     const uint64_t t0 = hal_time_now_us(clock);
     assert_int_equal(hal_time_wait_until_us(clock, t0 + 2000U), 0);
     const uint64_t t1 = hal_time_now_us(clock);
-    assert_true(t1 >= (t0 + 2000U));
+    ASSERT_GE(t1, t0 + 2000U);
     /* A deadline in the past: at once, and the clock does not go back. */
     assert_int_equal(hal_time_wait_until_us(clock, t0), 0);
     const uint64_t t2 = hal_time_now_us(clock);
-    assert_true(t2 >= t1);
-    assert_true((t2 - t1) < 1000000U);
+    ASSERT_GE(t2, t1);
+    ASSERT_LT(t2 - t1, 1000000U);
     /* Ten 10 ms ticks on absolute deadlines take at least 100 ms. */
     uint64_t deadline = t2;
     for (uint32_t k = 0U; k < 10U; k++) {
         deadline += 10000U;
         assert_int_equal(hal_time_wait_until_us(clock, deadline), 0);
     }
-    assert_true(hal_time_now_us(clock) >= (t2 + 100000U));
+    ASSERT_GE(hal_time_now_us(clock), t2 + 100000U);
 }
 
 int hal_conformance_run(const hal_conformance_backend_t *b)

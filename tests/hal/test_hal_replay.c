@@ -14,6 +14,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "hal/replay/hal_replay.h"
 #include "tests/hal/hal_conformance.h"
 
@@ -263,7 +265,8 @@ static void test_each_bad_line_is_counted_with_its_reason(void **state)
         /* A good line, the bad one as line 2, a good one after it. */
         const int n = snprintf(log, sizeof log, "(1.000000) can0 100#01\n%s\n(2.000000) can0 101#02\n",
                                cases[k].line);
-        assert_true((n > 0) && ((size_t)n < sizeof log));
+        ASSERT_GT(n, 0);
+        ASSERT_LT((size_t)n, sizeof log);
         start(log, 0U);
         hal_can_t *h = hal_replay_open(&g_bus);
         hal_replay_advance_to(&g_bus, UINT64_MAX);
@@ -409,7 +412,8 @@ static void test_shared_log_vectors(void **state)
     for (size_t k = 0U; k < sizeof k_vectors / sizeof k_vectors[0]; k++) {
         const log_vector_t *v = &k_vectors[k];
         const int n = snprintf(log, sizeof log, "%s\n", v->line);
-        assert_true((n > 0) && ((size_t)n < sizeof log));
+        ASSERT_GT(n, 0);
+        ASSERT_LT((size_t)n, sizeof log);
         start(log, 0U);
         hal_can_t *h = hal_replay_open(&g_bus);
         hal_replay_advance_to(&g_bus, UINT64_MAX);

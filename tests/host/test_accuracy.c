@@ -17,6 +17,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_estimator.h"
 #include "pfe_fixed.h"
@@ -55,9 +57,9 @@ static void check_object_model(const char *name, uint32_t n)
                   n, r.fixed.fuel_l, r.ref.fuel_l, 100.0 * r.fuel_rel_err, r.speed_rms_kmh);
     road_ppm_free(&road);
     assert_int_equal(r.steps, 1200);
-    assert_true(r.ref.fuel_l > 1.0);
-    assert_true(fabs(r.fuel_rel_err) <= 0.001);
-    assert_true(r.speed_rms_kmh <= 0.05);
+    ASSERT_GT(r.ref.fuel_l, 1.0);
+    ASSERT_LE(fabs(r.fuel_rel_err), 0.001);
+    ASSERT_LE(r.speed_rms_kmh, 0.05);
 }
 
 static void check_estimator(const char *name, uint32_t n)
@@ -104,9 +106,9 @@ static void check_estimator(const char *name, uint32_t n)
                   100.0 * worst_pos, 100.0 * worst_rate);
     drive_trace_free(&drive);
     road_ppm_free(&road);
-    assert_true(fabs(err_total) <= 0.001);
-    assert_true(worst_pos <= 0.001);
-    assert_true(worst_rate <= 0.01);
+    ASSERT_LE(fabs(err_total), 0.001);
+    ASSERT_LE(worst_pos, 0.001);
+    ASSERT_LE(worst_rate, 0.01);
 }
 
 static void test_flat(void **state)

@@ -25,6 +25,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -59,12 +61,12 @@ static int read_text(const char *text, canlog_format_t fmt)
         if (rc < 0) {
             print_error("unexpected error: %s\n", canlog_message(r));
         }
-        assert_true(rc >= 0);
+        ASSERT_GE(rc, 0);
         if (rc == 0) {
             break;
         }
         n++;
-        assert_true(n < MAX_FRAMES);
+        ASSERT_LT(n, MAX_FRAMES);
     }
     return n;
 }
@@ -538,7 +540,7 @@ static void test_bad_empty(void **state)
     /* a real empty file, through a file descriptor */
     const char *path = write_file("empty.log", "", 0U);
     const int fd = open(path, O_RDONLY);
-    assert_true(fd >= 0);
+    ASSERT_GE(fd, 0);
     memset(r, 0xA5, sizeof *r);
     assert_int_equal(canlog_open_fd(r, fd, "empty.log", CANLOG_FMT_AUTO, CANLOG_ON_ERROR_STOP), 0);
     assert_int_equal(canlog_next(r, &f), -(int)CANLOG_E_EMPTY);
@@ -601,7 +603,7 @@ static void test_bad_binary(void **state)
     }
     const char *path = write_file("noise.bin", noise, sizeof noise);
     const int fd = open(path, O_RDONLY);
-    assert_true(fd >= 0);
+    ASSERT_GE(fd, 0);
     memset(r, 0xA5, sizeof *r);
     assert_int_equal(canlog_open_fd(r, fd, "noise.bin", CANLOG_FMT_AUTO, CANLOG_ON_ERROR_STOP), 0);
     assert_int_equal(canlog_next(r, &f), -(int)CANLOG_E_BINARY);
@@ -649,7 +651,7 @@ static void test_streaming_large_file(void **state)
     const char *path = write_file("large.log", text, o);
     free(text);
     const int fd = open(path, O_RDONLY);
-    assert_true(fd >= 0);
+    ASSERT_GE(fd, 0);
     canlog_reader_t *r = &g_reader;
     memset(r, 0xA5, sizeof *r);
     assert_int_equal(canlog_open_fd(r, fd, "large.log", CANLOG_FMT_AUTO, CANLOG_ON_ERROR_STOP), 0);
@@ -911,7 +913,9 @@ static void three_formats(const canlog_frame_t *frames, size_t n)
         nl += put_log(log + nl, &frames[i]);
         np += put_printed(printed + np, &frames[i], &indent);
         na += put_asc(asc + na, &frames[i], frames[0].time_us);
-        assert_true((nl < cap - 400U) && (np < cap - 400U) && (na < cap - 400U));
+        ASSERT_LT(nl, cap - 400U);
+        ASSERT_LT(np, cap - 400U);
+        ASSERT_LT(na, cap - 400U);
     }
     same_frames(log, nl, frames, n, 0U, frames[0].iface, CANLOG_FMT_LOG);
     same_frames(printed, np, frames, n, 0U, frames[0].iface, CANLOG_FMT_PRINTED);
@@ -992,7 +996,7 @@ static void test_drive_log_three_formats(void **state)
     }
     assert_int_equal(rc, 0);
     assert_int_equal(close(fd), 0);
-    assert_true(n > 1000U);
+    ASSERT_GT(n, 1000U);
     assert_int_equal(canlog_format(r), CANLOG_FMT_LOG);
     print_message("%zu frames of %s in three formats\n", n, g_drive_log);
     three_formats(frames, n);
@@ -1039,7 +1043,8 @@ static void test_shared_log_vectors(void **state)
     for (size_t k = 0U; k < sizeof k_vectors / sizeof k_vectors[0]; k++) {
         const log_vector_t *v = &k_vectors[k];
         const int n = snprintf(text, sizeof text, "%s\n", v->line);
-        assert_true((n > 0) && ((size_t)n < sizeof text));
+        ASSERT_GT(n, 0);
+        ASSERT_LT((size_t)n, sizeof text);
         memset(r, 0xA5, sizeof *r);
         assert_int_equal(canlog_open_mem(r, text, (size_t)n, "v.log", CANLOG_FMT_AUTO,
                                          CANLOG_ON_ERROR_STOP), 0);

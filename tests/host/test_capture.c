@@ -19,6 +19,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,7 +44,7 @@ static char g_path[PATH_LEN];
 /* Writes n bytes to the test directory's file `name`; returns its path. */
 static const char *write_file(const char *name, const char *bytes, size_t n)
 {
-    assert_true(strlen(name) < 64U);
+    ASSERT_LT(strlen(name), 64U);
     snprintf(g_path, sizeof g_path, "%s/%.63s", g_dir, name);
     FILE *f = fopen(g_path, "wb");
     assert_non_null(f);
@@ -338,13 +340,13 @@ static void test_load_printed_form(void **state)
 static void frame_ccvs1(pfe_can_frame_t *f, int32_t speed_mm_s)
 {
     const pfe_msg_ccvs1_t m = {{speed_mm_s, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ccvs1(f, &m, 0U) >= 0);
+    ASSERT_GE(pfe_codec_encode_ccvs1(f, &m, 0U), 0);
 }
 
 static void frame_ssi(pfe_can_frame_t *f, int32_t pitch_udeg)
 {
     const pfe_msg_ssi_t m = {{pitch_udeg, PFE_SIG_VALID}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ssi(f, &m, 0U) >= 0);
+    ASSERT_GE(pfe_codec_encode_ssi(f, &m, 0U), 0);
 }
 
 /* 90 km/h on the flat for ms milliseconds from t0_us: CCVS1 every 100 ms,
@@ -374,29 +376,29 @@ static void test_bus_ref_flat(void **state)
     /* REFERENCE.md: 129.14 kW at the wheels (air 2418.75 N + rolling
      * 2746.8 N at 25 m/s) + 4 kW auxiliary, / (0.40 * 35.8 MJ/L) =
      * 9.2974e-3 L/s = 33.4707 L/h. */
-    assert_true(fabs(bus_ref_own_rate(&r) * 3600.0 - 33.4707) < 0.005);
-    assert_true(fabs(bus_ref_platoon_rate(&r) * 3600.0 - 33.4707) < 0.005);
+    ASSERT_NEAR_LT(bus_ref_own_rate(&r) * 3600.0, 33.4707, 0.005);
+    ASSERT_NEAR_LT(bus_ref_platoon_rate(&r) * 3600.0, 33.4707, 0.005);
     /* A peek sees what a tick would, and changes nothing. */
     const uint64_t ticks = r.ticks;
     double own = 0.0, platoon = 0.0;
     assert_true(bus_ref_peek(&r, 3000003U, &own, &platoon));
-    assert_true(fabs(own * 3600.0 - 33.4707) < 0.005);
+    ASSERT_NEAR_LT(own * 3600.0, 33.4707, 0.005);
     assert_int_equal(r.ticks, ticks);
     /* The SSI stops: 30 ms later the road is assumed flat, as the module
      * assumes it; the CCVS1 stops too: 300 ms later no estimate. */
     bus_ref_advance(&r, 3000003U + 40000U);
     assert_true(r.grade_flat);
     assert_true(bus_ref_valid(&r));
-    assert_true(fabs(bus_ref_own_rate(&r) * 3600.0 - 33.4707) < 0.005);
+    ASSERT_NEAR_LT(bus_ref_own_rate(&r) * 3600.0, 33.4707, 0.005);
     bus_ref_advance(&r, 2900003U + 310000U);
     assert_false(bus_ref_valid(&r));
-    assert_true(bus_ref_own_rate(&r) == 0.0);
+    ASSERT_EQ(bus_ref_own_rate(&r), 0.0);
 }
 
 static void frame_ccvs1_from(pfe_can_frame_t *f, int32_t speed_mm_s, pfe_sig_state_t st, uint8_t sa)
 {
     const pfe_msg_ccvs1_t m = {{speed_mm_s, st}};
-    assert_true(pfe_codec_encode_ccvs1(f, &m, sa) >= 0);
+    ASSERT_GE(pfe_codec_encode_ccvs1(f, &m, sa), 0);
 }
 
 /* Two senders of CCVS1, one not available: the reference locks onto the
@@ -420,7 +422,7 @@ static void test_bus_ref_senders_and_flat(void **state)
     assert_true(r.grade_flat);
     assert_true(bus_ref_valid(&r));
     /* no SSI at all: 90 km/h on a road assumed flat, 33.4707 L/h as above */
-    assert_true(fabs(bus_ref_own_rate(&r) * 3600.0 - 33.4707) < 0.005);
+    ASSERT_NEAR_LT(bus_ref_own_rate(&r) * 3600.0, 33.4707, 0.005);
     /* the engine stops; the cab controller's valid speed takes over after
      * three periods (300 ms) without a valid value from the engine */
     for (unsigned t = 0U; t < 1000U; t += 100U) {
@@ -430,10 +432,10 @@ static void test_bus_ref_senders_and_flat(void **state)
         bus_ref_input(&r, &f, now + 4000U);
     }
     assert_int_equal(pfe_input_source(&r.speed_in), 0x31);
-    assert_true(fabs(r.speed_m_s - 20.0) < 1e-9);
+    ASSERT_NEAR_LT(r.speed_m_s, 20.0, 1e-9);
     /* a slope sensor sending error: no flat road, no estimate */
     const pfe_msg_ssi_t e = {{0, PFE_SIG_ERROR}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ssi(&f, &e, 0x00U) >= 0);
+    ASSERT_GE(pfe_codec_encode_ssi(&f, &e, 0x00U), 0);
     bus_ref_advance(&r, 5000000U);
     bus_ref_input(&r, &f, 5000000U);
     bus_ref_advance(&r, 5020000U);
@@ -448,11 +450,11 @@ static void test_bus_ref_platoon_config(void **state)
     assert_int_equal(bus_ref_init(&r, 1U, 0U, 10000U), 0);
     drive_flat(&r, 0U, 2000U);
     const double alone_l = bus_ref_own_used(&r);
-    assert_true(alone_l > 0.0);
+    ASSERT_GT(alone_l, 0.0);
     pfe_msg_platoon_config_t c = {{5U, PFE_SIG_VALID}, {1U, PFE_SIG_VALID}, {10000U, PFE_SIG_VALID},
                                   {400U, PFE_SIG_VALID}, {25000, PFE_SIG_VALID}};
     pfe_can_frame_t f;
-    assert_true(pfe_codec_encode_platoon_config(&f, &c, 0xE0U) >= 0);
+    ASSERT_GE(pfe_codec_encode_platoon_config(&f, &c, 0xE0U), 0);
     bus_ref_input(&r, &f, 2000000U);
     assert_int_equal(r.n_vehicles, 5);
     assert_int_equal(r.position, 1);
@@ -460,20 +462,20 @@ static void test_bus_ref_platoon_config(void **state)
     assert_int_equal(r.reconfigurations, 1);
     assert_false(r.degraded);
     /* Fuel used carries over to the new position; the filter restarts. */
-    assert_true(bus_ref_own_used(&r) == alone_l);
+    ASSERT_EQ(bus_ref_own_used(&r), alone_l);
     /* The same configuration again changes nothing. */
     bus_ref_input(&r, &f, 2000500U);
     assert_int_equal(r.reconfigurations, 1);
     /* A position outside the platoon is refused. */
     c.own_position.value = 5U;
-    assert_true(pfe_codec_encode_platoon_config(&f, &c, 0xE0U) >= 0);
+    ASSERT_GE(pfe_codec_encode_platoon_config(&f, &c, 0xE0U), 0);
     bus_ref_input(&r, &f, 2001000U);
     assert_int_equal(r.position, 1);
     assert_false(r.config_ok);
     /* The second truck, 10 m behind the lead, uses less than one alone. */
     drive_flat(&r, 2010000U, 2000U);
     assert_true(bus_ref_valid(&r));
-    assert_true(bus_ref_own_rate(&r) * 3600.0 < 33.0);
+    ASSERT_LT(bus_ref_own_rate(&r) * 3600.0, 33.0);
 }
 
 /* ---- drive noise -------------------------------------------------------- */
@@ -483,16 +485,16 @@ static void test_noise_splitmix64(void **state)
     (void)state;
     drive_noise_t n;
     drive_noise_seed(&n, 0U);
-    assert_true(drive_noise_u64(&n) == 0xE220A8397B1DCDAFULL);
-    assert_true(drive_noise_u64(&n) == 0x6E789E6AA1B965F4ULL);
-    assert_true(drive_noise_u64(&n) == 0x06C45D188009454FULL);
-    assert_true(drive_noise_u64(&n) == 0xF88BB8A8724C81ECULL);
+    assert_int_equal(drive_noise_u64(&n), 0xE220A8397B1DCDAFULL);
+    assert_int_equal(drive_noise_u64(&n), 0x6E789E6AA1B965F4ULL);
+    assert_int_equal(drive_noise_u64(&n), 0x06C45D188009454FULL);
+    assert_int_equal(drive_noise_u64(&n), 0xF88BB8A8724C81ECULL);
     drive_noise_seed(&n, 12345U);
-    assert_true(drive_noise_u64(&n) == 0x22118258A9D111A0ULL);
-    assert_true(drive_noise_u64(&n) == 0x346EDCE5F713F8EDULL);
+    assert_int_equal(drive_noise_u64(&n), 0x22118258A9D111A0ULL);
+    assert_int_equal(drive_noise_u64(&n), 0x346EDCE5F713F8EDULL);
     /* 0xE220A8397B1DCDAF >> 11, times 2^-53. */
     drive_noise_seed(&n, 0U);
-    assert_true(drive_noise_uniform(&n) == 0.8833108082136426);
+    ASSERT_EQ(drive_noise_uniform(&n), 0.8833108082136426);
 }
 
 static void test_noise_gauss(void **state)
@@ -511,10 +513,12 @@ static void test_noise_gauss(void **state)
     }
     const double mean = sum / count;
     const double sd = sqrt((sum2 / count) - (mean * mean));
-    assert_true(fabs(mean) < 0.01);
-    assert_true(fabs(sd - 1.0) < 0.01);
-    assert_true((lo > -6.0) && (hi < 6.0));
-    assert_true((lo < -3.5) && (hi > 3.5));
+    ASSERT_LT(fabs(mean), 0.01);
+    ASSERT_NEAR_LT(sd, 1.0, 0.01);
+    ASSERT_GT(lo, -6.0);
+    ASSERT_LT(hi, 6.0);
+    ASSERT_LT(lo, -3.5);
+    ASSERT_GT(hi, 3.5);
 }
 
 /* ---- main --------------------------------------------------------------- */

@@ -22,6 +22,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -98,7 +100,7 @@ static void test_every_codec_message_is_in_the_dbc(void **state)
             fail_msg("codec message %s is not in the DBC", m->name);
         }
         assert_int_equal(d->id, dbc_id_of(m));
-        assert_true((d->id & DBC_EXTENDED_ID_FLAG) != 0U);
+        assert_int_not_equal(d->id & DBC_EXTENDED_ID_FLAG, 0U);
         assert_int_equal(pfe_j1939_pgn(d->id), m->pgn);
         assert_int_equal(pfe_j1939_source(d->id), m->dbc_address);
         assert_int_equal(d->dlc, m->dlc);
@@ -112,10 +114,10 @@ static void test_every_codec_message_is_in_the_dbc(void **state)
         assert_non_null(d->comment);
         /* the DBC shows the module's frames from its address, the others' from 0x00 */
         if (strcmp(d->transmitter, "PFE") == 0) {
-            assert_true((m->direction & PFE_CODEC_DIR_TX) != 0U);
+            assert_int_not_equal(m->direction & PFE_CODEC_DIR_TX, 0U);
             assert_int_equal(m->dbc_address, PFE_CODEC_DEFAULT_ADDRESS);
         } else {
-            assert_true((m->direction & PFE_CODEC_DIR_RX) != 0U);
+            assert_int_not_equal(m->direction & PFE_CODEC_DIR_RX, 0U);
             assert_int_equal(m->dbc_address, 0x00);
             for (size_t k = 0U; k < d->n_signals; k++) {
                 bool to_pfe = false;
@@ -147,8 +149,8 @@ static void check_signal(const pfe_codec_signal_t *s, const dbc_signal_t *d)
     int64_t pq;
     assert_int_equal(d->start_bit, s->start_bit);
     assert_int_equal(d->length, s->length);
-    assert_true(d->little_endian == (s->byte_order == PFE_CODEC_LITTLE_ENDIAN));
-    assert_true(d->is_signed == s->is_signed);
+    assert_int_equal(d->little_endian, s->byte_order == PFE_CODEC_LITTLE_ENDIAN);
+    assert_int_equal(d->is_signed, s->is_signed);
     dbc_frac(d->factor_text, &n, &q);
     if (!frac_equal(n, q, s->scale_num, s->scale_den)) {
         fail_msg("%s.%s: scale %s in the DBC, %ld/%ld in the codec", s->message, s->name, d->factor_text,
@@ -191,7 +193,10 @@ static void check_signal(const pfe_codec_signal_t *s, const dbc_signal_t *d)
     }
     /* J1939 special ranges apply to whole bytes and 2-bit states only */
     if (s->ranges == PFE_CODEC_RANGES_J1939) {
-        assert_true((s->length == 2U) || ((s->length % 8U) == 0U));
+        if ((s->length != 2U) && ((s->length % 8U) != 0U)) {
+            fail_msg("%s.%s: J1939 ranges on a %u-bit signal (2 bits or whole bytes only)",
+                     s->message, s->name, (unsigned)s->length);
+        }
     }
 }
 
@@ -306,14 +311,14 @@ static void test_codec_bits_follow_the_dbc(void **state)
             for (size_t k = 0U; k < 8U; k++) {
                 data[k] = rand8();
             }
-            assert_true(pfe_codec_raw_get(data, s) == dbc_raw(d, data));
+            assert_int_equal(pfe_codec_raw_get(data, s), dbc_raw(d, data));
             uint8_t before[8];
             memcpy(before, data, 8U);
             const uint32_t raw = ((uint32_t)rand8() << 24) | ((uint32_t)rand8() << 16) |
                                  ((uint32_t)rand8() << 8) | rand8();
             pfe_codec_raw_put(data, s, raw);
             const uint64_t mask = (s->length == 32U) ? 0xFFFFFFFFULL : ((1ULL << s->length) - 1U);
-            assert_true(dbc_raw(d, data) == (raw & mask));
+            assert_int_equal(dbc_raw(d, data), raw & mask);
             for (uint32_t bit = 0U; bit < 64U; bit++) {
                 const bool inside = (bit >= d->start_bit) && (bit < (d->start_bit + d->length));
                 const unsigned a = ((unsigned)data[bit / 8U] >> (bit % 8U)) & 1U;
@@ -614,15 +619,15 @@ static void test_reader_accepts_the_whole_format(void **state)
     assert_false(s->little_endian);
     assert_true(s->is_signed);
     assert_string_equal(s->factor_text, "1E-3");
-    assert_true(s->factor == 1e-3);
-    assert_true(s->offset == -0.5);
-    assert_true(s->max == 2.5);
+    ASSERT_EQ(s->factor, 1e-3);
+    ASSERT_EQ(s->offset, -0.5);
+    ASSERT_EQ(s->max, 2.5);
     assert_string_equal(s->unit, "m/s");
     assert_int_equal(s->n_receivers, 2);
     s = dbc_signal_by_name(m, "Spaced");
     assert_int_equal(s->n_receivers, 2);
     assert_string_equal(s->receivers[1], "B");
-    assert_true(s->factor == 0.5);
+    ASSERT_EQ(s->factor, 0.5);
     s = dbc_signal_by_name(m, "Sel");
     assert_int_equal(s->mux_kind, DBC_MUX_MULTIPLEXOR);
     assert_int_equal(s->n_values, 3);
@@ -658,21 +663,29 @@ static void test_decimal_to_rational(void **state)
     int64_t n;
     int64_t q;
     assert_int_equal(dbc_decimal_to_rational("0.00390625", &n, &q), 0);
-    assert_true((n == 390625) && (q == 100000000));
+    assert_int_equal(n, 390625);
+    assert_int_equal(q, 100000000);
     assert_int_equal(dbc_decimal_to_rational("-64", &n, &q), 0);
-    assert_true((n == -64) && (q == 1));
+    assert_int_equal(n, -64);
+    assert_int_equal(q, 1);
     assert_int_equal(dbc_decimal_to_rational("64.510", &n, &q), 0);
-    assert_true((n == 6451) && (q == 100));
+    assert_int_equal(n, 6451);
+    assert_int_equal(q, 100);
     assert_int_equal(dbc_decimal_to_rational("1E-3", &n, &q), 0);
-    assert_true((n == 1) && (q == 1000));
+    assert_int_equal(n, 1);
+    assert_int_equal(q, 1000);
     assert_int_equal(dbc_decimal_to_rational("2.5e2", &n, &q), 0);
-    assert_true((n == 250) && (q == 1));
+    assert_int_equal(n, 250);
+    assert_int_equal(q, 1);
     assert_int_equal(dbc_decimal_to_rational("+.5", &n, &q), 0);
-    assert_true((n == 5) && (q == 10));
+    assert_int_equal(n, 5);
+    assert_int_equal(q, 10);
     assert_int_equal(dbc_decimal_to_rational("4211081.215", &n, &q), 0);
-    assert_true((n == 4211081215LL) && (q == 1000));
+    assert_int_equal(n, 4211081215LL);
+    assert_int_equal(q, 1000);
     assert_int_equal(dbc_decimal_to_rational("0", &n, &q), 0);
-    assert_true((n == 0) && (q == 1));
+    assert_int_equal(n, 0);
+    assert_int_equal(q, 1);
     assert_int_equal(dbc_decimal_to_rational("1.2.3", &n, &q), -1);
     assert_int_equal(dbc_decimal_to_rational("abc", &n, &q), -1);
     assert_int_equal(dbc_decimal_to_rational("", &n, &q), -1);
@@ -691,20 +704,21 @@ static void test_reader_survives_damaged_input(void **state)
     static char buf[1 << 17];
     const size_t len = fread(buf, 1U, sizeof buf, f);
     (void)fclose(f);
-    assert_true((len > 1000U) && (len < sizeof buf));
+    ASSERT_GT(len, 1000U);
+    ASSERT_LT(len, sizeof buf);
     size_t failures = 0U;
     for (size_t cut = 0U; cut <= len; cut += 3U) {
         dbc_t *d = NULL;
         dbc_error_t err;
         if (dbc_parse_text(buf, cut, &d, &err) != 0) {
             assert_null(d);
-            assert_true(err.message[0] != '\0');
+            assert_int_not_equal(err.message[0], '\0');
             failures++;
         } else {
             dbc_free(d);
         }
     }
-    assert_true(failures > 0U);
+    ASSERT_GT(failures, 0U);
     static char copy[1 << 17];
     static const char junk[] = {'"', ';', ':', '|', '@', '(', ')', '[', ']', ',', '-', '+', '0', '9', 'M',
                                 'm', ' ', '\n', '\t', '\0', '\x80', '\xFF', '.', 'e', 'Z'};
@@ -721,7 +735,7 @@ static void test_reader_survives_damaged_input(void **state)
             dbc_free(d);
         } else {
             assert_null(d);
-            assert_true(err.line >= 0);
+            ASSERT_GE(err.line, 0);
         }
     }
 }

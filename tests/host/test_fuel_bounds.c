@@ -32,6 +32,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "ref/fuel_bounds.h"
 #include "ref/node_model.h"
 #include "lib/route_gen.h"
@@ -55,15 +57,20 @@ static void test_grade_window(void **state)
     assert_int_equal(node_road_from_percent(pct, 5U, 10.0, &r), 0);
     double lo = -1.0, hi = -1.0;
     fuel_bounds_grade_window(&r.road, 25.0, 10.0, &lo, &hi); /* 15 .. 35 m: samples 1 .. 3 */
-    assert_true((lo == 0.01) && (hi == 0.03));
+    ASSERT_EQ(lo, 0.01);
+    ASSERT_EQ(hi, 0.03);
     fuel_bounds_grade_window(&r.road, 25.0, 0.0, &lo, &hi);
-    assert_true((lo == 0.02) && (hi == 0.02));
+    ASSERT_EQ(lo, 0.02);
+    ASSERT_EQ(hi, 0.02);
     fuel_bounds_grade_window(&r.road, -100.0, 5.0, &lo, &hi); /* before the road: its first grade */
-    assert_true((lo == 0.0) && (hi == 0.0));
+    ASSERT_EQ(lo, 0.0);
+    ASSERT_EQ(hi, 0.0);
     fuel_bounds_grade_window(&r.road, 1000.0, 500.0, &lo, &hi); /* 500 .. 1500 m: the last */
-    assert_true((lo == 0.04) && (hi == 0.04));
+    ASSERT_EQ(lo, 0.04);
+    ASSERT_EQ(hi, 0.04);
     fuel_bounds_grade_window(&r.road, 20.0, 1000.0, &lo, &hi);
-    assert_true((lo == 0.0) && (hi == 0.04));
+    ASSERT_EQ(lo, 0.0);
+    ASSERT_EQ(hi, 0.04);
     node_road_free(&r);
 }
 
@@ -78,21 +85,21 @@ static void test_flat_road_bounds(void **state)
     char err[128];
     assert_int_equal(fuel_bounds_compute(&cfg, &r.road, &b, err, sizeof err), 0);
     print_message("flat, N = 5: lower %.6f, object %.6f, upper %.6f L\n", b.lower_l, b.fuel_l, b.upper_l);
-    assert_true(fabs(b.lower_l - 18.462675) < 1e-5);
-    assert_true(fabs(b.upper_l - 22.313757) < 1e-5);
-    assert_true(fabs(b.fuel_l - 19.395042) < 1e-5);
-    assert_true(fabs(b.time_s - 480.0) < 1e-9);
-    assert_true(fabs(b.lower.time_on_s - 480.0) < 1e-9);
-    assert_true(b.lower.work_grade_j == 0.0);
-    assert_true(fabs(b.window_m - (4.0 * 26.5)) < 1e-9);
+    ASSERT_NEAR_LT(b.lower_l, 18.462675, 1e-5);
+    ASSERT_NEAR_LT(b.upper_l, 22.313757, 1e-5);
+    ASSERT_NEAR_LT(b.fuel_l, 19.395042, 1e-5);
+    ASSERT_NEAR_LT(b.time_s, 480.0, 1e-9);
+    ASSERT_NEAR_LT(b.lower.time_on_s, 480.0, 1e-9);
+    ASSERT_EQ(b.lower.work_grade_j, 0.0);
+    ASSERT_NEAR_LT(b.window_m, 4.0 * 26.5, 1e-9);
     assert_true(b.same_speed);
     assert_false(b.upgrade); /* nothing slows the platoon on the flat */
 
     node_config_default(&cfg, 1U); /* one truck: every bound is the prediction */
     assert_int_equal(fuel_bounds_compute(&cfg, &r.road, &b, err, sizeof err), 0);
-    assert_true(fabs(b.lower_l - 4.462751) < 1e-5);
-    assert_true(fabs(b.upper_l - 4.462751) < 1e-5);
-    assert_true(b.window_m == 0.0);
+    ASSERT_NEAR_LT(b.lower_l, 4.462751, 1e-5);
+    ASSERT_NEAR_LT(b.upper_l, 4.462751, 1e-5);
+    ASSERT_EQ(b.window_m, 0.0);
     node_road_free(&r);
 }
 
@@ -111,9 +118,10 @@ static void test_efficiency_spread(void **state)
     fuel_bounds_t b;
     assert_int_equal(fuel_bounds_compute(&cfg, &r.road, &b, NULL, 0U), 0);
     print_message("flat, eta 0.38 and 0.42: lower %.6f, upper %.6f L\n", b.lower_l, b.upper_l);
-    assert_true(fabs(b.lower_l - 7.438777) < 1e-5);
-    assert_true(fabs(b.upper_l - 9.395266) < 1e-5);
-    assert_true((b.eta_min == 0.38) && (b.eta_max == 0.42));
+    ASSERT_NEAR_LT(b.lower_l, 7.438777, 1e-5);
+    ASSERT_NEAR_LT(b.upper_l, 9.395266, 1e-5);
+    ASSERT_EQ(b.eta_min, 0.38);
+    ASSERT_EQ(b.eta_max, 0.42);
     node_road_free(&r);
 }
 
@@ -148,7 +156,9 @@ static void test_route_rank(void **state)
     size_t order[3];
     size_t blocker = 99U;
     assert_int_equal(route_rank(e, 3U, order, &blocker), 1);
-    assert_true((order[0] == 1U) && (order[1] == 2U) && (order[2] == 0U));
+    assert_int_equal(order[0], 1U);
+    assert_int_equal(order[1], 2U);
+    assert_int_equal(order[2], 0U);
     assert_int_equal(blocker, 99U);
     e[1].upper_fails = "no upgrade"; /* the numbers agree, the best's upper bound does not hold */
     assert_int_equal(route_rank(e, 3U, order, &blocker), 2);
@@ -164,7 +174,7 @@ static void test_route_rank(void **state)
     assert_int_equal(blocker, 0U);
     route_estimate_t tie[2] = {{10.0, 5.0, 6.0, NULL}, {10.0, 7.0, 8.0, NULL}};
     assert_int_equal(route_rank(tie, 2U, order, NULL), 1);
-    assert_true(order[0] == 0U);
+    assert_int_equal(order[0], 0U);
     assert_int_equal(route_rank(e, 1U, order, &blocker), -1);
     assert_int_equal(route_rank(NULL, 3U, order, &blocker), -1);
 }
@@ -175,14 +185,14 @@ static void test_route_generator(void **state)
     route_rng_t r;
     route_rng_seed(&r, 1234567U);
     /* The reference SplitMix64 outputs for seed 1234567 (Rosetta Code). */
-    assert_true(route_rng_next(&r) == UINT64_C(6457827717110365317));
-    assert_true(route_rng_next(&r) == UINT64_C(3203168211198807973));
+    assert_int_equal(route_rng_next(&r), UINT64_C(6457827717110365317));
+    assert_int_equal(route_rng_next(&r), UINT64_C(3203168211198807973));
     static int32_t a[ROUTE_HILLY_SAMPLES], b[ROUTE_HILLY_SAMPLES];
     route_gen_hilly(42U, a);
     route_gen_hilly(42U, b);
     assert_memory_equal(a, b, sizeof a);
     route_gen_hilly(43U, b);
-    assert_true(memcmp(a, b, sizeof a) != 0);
+    assert_memory_not_equal(a, b, sizeof a);
     for (uint64_t seed = 1U; seed <= PROPERTY_ROUTES; seed++) {
         route_gen_hilly(seed, a);
         int32_t lo = 0, hi = 0;
@@ -193,8 +203,9 @@ static void test_route_generator(void **state)
             up_m = (a[k] >= 2000) ? up_m + 10U : 0U;
             longest_up_m = (up_m > longest_up_m) ? up_m : longest_up_m;
         }
-        assert_true((lo >= -3000) && (hi <= 4000));
-        assert_true(longest_up_m >= 600U);                    /* the forced upgrade */
+        ASSERT_GE(lo, -3000);
+        ASSERT_LE(hi, 4000);
+        ASSERT_GE(longest_up_m, 600U);                        /* the forced upgrade */
         for (size_t k = 0U; k < 100U; k++) {
             assert_int_equal(a[k], 0);                         /* 1 km flat lead-in */
         }

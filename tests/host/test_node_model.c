@@ -32,6 +32,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "ref/node_model.h"
 #include "ref/ref_model.h"
 
@@ -87,12 +89,12 @@ static void test_one_truck_on_the_flat_is_the_object_model(void **state)
     assert_int_equal(run_node(&cfg, &road.road, &node), 0);
     assert_int_equal(run_object(&cfg, &road.road, &object), 0);
     print_message("one truck, 12 km flat: node %.6f L, object %.6f L\n", node.fuel_l, object.fuel_l);
-    assert_true(fabs(node.fuel_l - ONE_TRUCK_12KM_L) < 1e-5);
-    assert_true(fabs(object.fuel_l - ONE_TRUCK_12KM_L) < 1e-5);
-    assert_true(fabs(node.fuel_l - object.fuel_l) < 1e-9);
-    assert_true(fabs(node.time_s - 480.0) < 1e-9);
-    assert_true(fabs(object.time_s - 480.0) < 1e-9);
-    assert_true(fabs(node.mean_kmh - 90.0) < 1e-9);
+    ASSERT_NEAR_LT(node.fuel_l, ONE_TRUCK_12KM_L, 1e-5);
+    ASSERT_NEAR_LT(object.fuel_l, ONE_TRUCK_12KM_L, 1e-5);
+    ASSERT_NEAR_LT(node.fuel_l, object.fuel_l, 1e-9);
+    ASSERT_NEAR_LT(node.time_s, 480.0, 1e-9);
+    ASSERT_NEAR_LT(object.time_s, 480.0, 1e-9);
+    ASSERT_NEAR_LT(node.mean_kmh, 90.0, 1e-9);
     assert_int_equal(node.steps, 4800);
     assert_int_equal(object.steps, 4800);
     assert_int_equal(node.evaluations, 4800);
@@ -110,8 +112,8 @@ static void test_identical_trucks_without_slipstream_burn_n_times_one(void **sta
     assert_int_equal(run_node(&cfg, &road.road, &node), 0);
     assert_int_equal(run_object(&cfg, &road.road, &object), 0);
     print_message("5 trucks, no slipstream: node %.6f L, object %.6f L\n", node.fuel_l, object.fuel_l);
-    assert_true(fabs(node.fuel_l - (5.0 * ONE_TRUCK_12KM_L)) < 5e-5);
-    assert_true(fabs(object.fuel_l - (5.0 * ONE_TRUCK_12KM_L)) < 5e-5);
+    ASSERT_NEAR_LT(node.fuel_l, 5.0 * ONE_TRUCK_12KM_L, 5e-5);
+    ASSERT_NEAR_LT(object.fuel_l, 5.0 * ONE_TRUCK_12KM_L, 5e-5);
     /* Every truck drives the whole road: the last one starts 4 (16.5 + 10) m
      * behind it and leaves it 106 m after the leader. */
     assert_int_equal(node.steps, 4800 + 43);
@@ -131,13 +133,13 @@ static void test_followers_hold_the_time_gap_on_a_climb(void **state)
         assert_int_equal(node_sim_step(&s), 1);
     }
     print_message("2 %% after 10 km: lead %.4f km/h, gaps", s.speed_m_s[0] * 3.6);
-    assert_true(fabs((s.speed_m_s[0] * 3.6) - UPHILL_LEAD_KMH) < 0.01);
+    ASSERT_NEAR_LT(s.speed_m_s[0] * 3.6, UPHILL_LEAD_KMH, 0.01);
     for (unsigned i = 1U; i < 5U; i++) {
         const double gap = s.position_m[i - 1U] - s.position_m[i] - 16.5;
         print_message(" %.4f", gap);
-        assert_true(fabs(gap - (0.4 * s.speed_m_s[i])) < 0.01);
-        assert_true(fabs(gap - UPHILL_GAP_M) < 0.01);
-        assert_true(fabs(s.speed_m_s[i] - s.speed_m_s[0]) < 0.003);
+        ASSERT_NEAR_LT(gap, 0.4 * s.speed_m_s[i], 0.01);
+        ASSERT_NEAR_LT(gap, UPHILL_GAP_M, 0.01);
+        ASSERT_NEAR_LT(s.speed_m_s[i], s.speed_m_s[0], 0.003);
     }
     print_message(" m\n");
     node_road_free(&road);
@@ -167,10 +169,10 @@ static void test_object_model_climbs_at_the_lead_trucks_pace(void **state)
     print_message("2 %% climb: node %.4f L %.3f km/h, object %.4f L (%+.3f %%) %.3f km/h, "
                   "without formation drag %.3f km/h\n",
                   node.fuel_l, node.mean_kmh, object.fuel_l, df, object.mean_kmh, loose.mean_kmh);
-    assert_true(fabs(df) < 0.3);
-    assert_true(fabs(object.mean_kmh - node.mean_kmh) < 0.2);
-    assert_true(fabs(object.min_kmh - UPHILL_LEAD_KMH) < 0.2);
-    assert_true(loose.mean_kmh - node.mean_kmh > 1.0);
+    ASSERT_LT(fabs(df), 0.3);
+    ASSERT_NEAR_LT(object.mean_kmh, node.mean_kmh, 0.2);
+    ASSERT_NEAR_LT(object.min_kmh, UPHILL_LEAD_KMH, 0.2);
+    ASSERT_GT(loose.mean_kmh - node.mean_kmh, 1.0);
     node_road_free(&road);
 }
 
@@ -193,13 +195,13 @@ static void test_a_follower_closes_a_gap_without_overshooting_the_cap(void **sta
     const double gap = s.position_m[0] - s.position_m[1] - 16.5;
     print_message("gap 20 m -> %.4f m after 150 s, top speed %.3f km/h, closest %.3f m\n", gap,
                   top * 3.6, closest);
-    assert_true(fabs(gap - 10.0) < 0.05);
+    ASSERT_NEAR_LT(gap, 10.0, 0.05);
     /* Its own cruise control holds set speed + 2 km/h; when it takes over,
      * its integral holds full power, so it overshoots until the proportional
      * part cancels the surplus: (250 kW / 25.6 m/s - 5.3 kN) / (0.3 /s 40 t)
      * = 0.37 m/s, 1.3 km/h. */
-    assert_true(top * 3.6 < 92.0 + 1.5);
-    assert_true(closest > 9.0);
+    ASSERT_LT(top * 3.6, 92.0 + 1.5);
+    ASSERT_GT(closest, 9.0);
     node_road_free(&road);
 }
 
@@ -212,9 +214,9 @@ static void test_no_fuel_while_braking_downhill(void **state)
     model_summary_t node, object;
     assert_int_equal(run_node(&cfg, &road.road, &node), 0);
     assert_int_equal(run_object(&cfg, &road.road, &object), 0);
-    assert_true(node.fuel_l == 0.0);
-    assert_true(object.fuel_l == 0.0);
-    assert_true(node.max_kmh < 92.0);
+    ASSERT_EQ(node.fuel_l, 0.0);
+    ASSERT_EQ(object.fuel_l, 0.0);
+    ASSERT_LT(node.max_kmh, 92.0);
     node_road_free(&road);
 }
 
@@ -235,27 +237,27 @@ static void test_object_aggregates_match_ref_platoon_init(void **state)
     const double *a = &ref.object.air_k;
     const double *b = &mine.object.air_k;
     for (size_t k = 0U; k < sizeof(ref_vehicle_t) / sizeof(double); k++) {
-        assert_true(fabs(a[k] - b[k]) <= 1e-12 * fabs(a[k]));
+        ASSERT_NEAR(a[k], b[k], 1e-12 * fabs(a[k]));
     }
-    assert_true(mine.gap == 10.0);
+    ASSERT_EQ(mine.gap, 10.0);
     /* The weakest truck sets Pmax per kg (eq. 4.4): 250 kW / 40 t, not 200 kW / 30 t. */
-    assert_true(fabs(mine.object.power_max - (250000.0 / 40000.0 * 150000.0)) < 1e-6);
+    ASSERT_NEAR_LT(mine.object.power_max, 250000.0 / 40000.0 * 150000.0, 1e-6);
     static ref_platoon_t slow, fast;
     assert_int_equal(object_platoon_build(&slow, &cfg, OBJECT_SLOWEST), 0);
     assert_int_equal(object_platoon_build(&fast, &cfg, OBJECT_FASTEST), 0);
     /* 1/2 1.29 6.0 4 and 1/2 1.29 5.5 (0.855 + 0.595 + 0.55 + 0.55), phi at 5 m */
-    assert_true(fabs(slow.object.air_k - 15.48) < 1e-9);
-    assert_true(fabs(fast.object.air_k - 9.046125) < 1e-9);
-    assert_true(fabs(slow.object.power_max - (250000.0 / 40000.0 * 150000.0)) < 1e-6);
-    assert_true(fabs(fast.object.power_max - (200000.0 / 30000.0 * 150000.0)) < 1e-6);
+    ASSERT_NEAR_LT(slow.object.air_k, 15.48, 1e-9);
+    ASSERT_NEAR_LT(fast.object.air_k, 9.046125, 1e-9);
+    ASSERT_NEAR_LT(slow.object.power_max, 250000.0 / 40000.0 * 150000.0, 1e-6);
+    ASSERT_NEAR_LT(fast.object.power_max, 200000.0 / 30000.0 * 150000.0, 1e-6);
     /* Formation drag: k = 1/2 1.29 (6.0 0.92, 6.0 0.69, 5.5 0.65, 6.0 0.65)
      * = 3.5604, 2.6703, 2.305875, 2.5155; the lead has the most per kg, so
      * c = 150 t * 3.5604 / 40 t - 11.052075 = 2.299425. The slowest platoon:
      * 1/2 1.29 6.0 (150 t / 30 t) - 15.48 = 3.87; the fastest: none. */
-    assert_true(fabs(ref.formation_air_k - 2.299425) < 1e-9);
-    assert_true(fabs(mine.formation_air_k - 2.299425) < 1e-9);
-    assert_true(fabs(slow.formation_air_k - 3.87) < 1e-9);
-    assert_true(fast.formation_air_k == 0.0);
+    ASSERT_NEAR_LT(ref.formation_air_k, 2.299425, 1e-9);
+    ASSERT_NEAR_LT(mine.formation_air_k, 2.299425, 1e-9);
+    ASSERT_NEAR_LT(slow.formation_air_k, 3.87, 1e-9);
+    ASSERT_EQ(fast.formation_air_k, 0.0);
 }
 
 static void test_fifty_trucks_cross_the_hilly_road_without_touching(void **state)
@@ -274,8 +276,8 @@ static void test_fifty_trucks_cross_the_hilly_road_without_touching(void **state
     assert_int_equal(run_node(&cfg, &road.road, &node), 0);
     print_message("50 trucks, hilly: gaps %.3f .. %.3f m, speeds %.2f .. %.2f km/h\n", node.min_gap_m,
                   node.max_gap_m, node.min_kmh, node.max_kmh);
-    assert_true(node.min_gap_m > 3.0);
-    assert_true(node.max_kmh < 92.0 + 5.0);
+    ASSERT_GT(node.min_gap_m, 3.0);
+    ASSERT_LT(node.max_kmh, 92.0 + 5.0);
     node_road_free(&road);
 }
 
@@ -304,8 +306,8 @@ static void test_thesis_tables_on_the_bundled_roads(void **state)
         const double dv = object.mean_kmh - node.mean_kmh;
         print_message("%s: node %.4f L, object %.4f L (%+.3f %%), mean speed %+.3f km/h\n", names[k],
                       node.fuel_l, object.fuel_l, df, dv);
-        assert_true(fabs(df) < 0.3);
-        assert_true(fabs(dv) < 0.2);
+        ASSERT_LT(fabs(df), 0.3);
+        ASSERT_LT(fabs(dv), 0.2);
         node_road_free(&road);
     }
 }
@@ -358,13 +360,13 @@ static void test_grade_lookup_extends_the_road_ends(void **state)
     const double pct[3] = {1.0, 2.0, 3.0};
     node_road_t road;
     assert_int_equal(node_road_from_percent(pct, 3U, 12.0, &road), 0);
-    assert_true(node_road_length_m(&road.road) == 36.0);
-    assert_true(node_road_grade(&road.road, -50.0) == 0.01);
-    assert_true(node_road_grade(&road.road, 0.0) == 0.01);
-    assert_true(node_road_grade(&road.road, 11.9) == 0.01);
-    assert_true(node_road_grade(&road.road, 12.0) == 0.02);
-    assert_true(node_road_grade(&road.road, 30.0) == 0.03);
-    assert_true(node_road_grade(&road.road, 1e6) == 0.03);
+    ASSERT_EQ(node_road_length_m(&road.road), 36.0);
+    ASSERT_EQ(node_road_grade(&road.road, -50.0), 0.01);
+    ASSERT_EQ(node_road_grade(&road.road, 0.0), 0.01);
+    ASSERT_EQ(node_road_grade(&road.road, 11.9), 0.01);
+    ASSERT_EQ(node_road_grade(&road.road, 12.0), 0.02);
+    ASSERT_EQ(node_road_grade(&road.road, 30.0), 0.03);
+    ASSERT_EQ(node_road_grade(&road.road, 1e6), 0.03);
     node_road_free(&road);
     node_road_free(&road); /* twice is harmless */
 }

@@ -41,6 +41,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "firmware/pfe_calib.h"
 #include "firmware/pfe_can.h"
 #include "firmware/pfe_codec.h"
@@ -120,11 +122,11 @@ static void send(hal_can_t *node, uint64_t tick, int32_t pitch_udeg)
     pfe_can_frame_t f;
     if ((tick % 10U) == 0U) {
         const pfe_msg_ccvs1_t speed = {{SPEED_MM_S, PFE_SIG_VALID}};
-        assert_true(pfe_codec_encode_ccvs1(&f, &speed, OTHER_SA) >= 0);
+        ASSERT_GE(pfe_codec_encode_ccvs1(&f, &speed, OTHER_SA), 0);
         assert_int_equal(hal_can_send(node, &f), 0);
     }
     const pfe_msg_ssi_t pitch = {{pitch_udeg, PFE_SIG_VALID}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ssi(&f, &pitch, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_ssi(&f, &pitch, OTHER_SA), 0);
     assert_int_equal(hal_can_send(node, &f), 0);
 }
 

@@ -19,6 +19,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "firmware/pfe_calib.h"
 #include "firmware/pfe_codec.h"
 #include "firmware/pfe_ecu.h"
@@ -44,8 +46,8 @@ static void send_preview(const int32_t *grade_ppm, uint32_t n, uint32_t spacing_
     m.preview_id.value = id;
     m.sample_count.value = n;
     m.spacing_m.value = spacing_m;
-    assert_true(pfe_codec_encode_grade_preview(&f, &m, 0x33U) >= 0);
-    assert_true(pfe_preview_push(&g_pv, &f) >= 0);
+    ASSERT_GE(pfe_codec_encode_grade_preview(&f, &m, 0x33U), 0);
+    ASSERT_GE(pfe_preview_push(&g_pv, &f), 0);
     for (uint32_t k = 0U; k < n; k += PFE_PREVIEW_SAMPLES_PER_FRAME) {
         memset(&m, 0, sizeof m);
         m.frame_type.value = PFE_PREVIEW_FRAME_DATA;
@@ -58,8 +60,8 @@ static void send_preview(const int32_t *grade_ppm, uint32_t n, uint32_t spacing_
                 m.grade_ppm[j].state = PFE_SIG_NOT_AVAILABLE;
             }
         }
-        assert_true(pfe_codec_encode_grade_preview(&f, &m, 0x33U) >= 0);
-        assert_true(pfe_preview_push(&g_pv, &f) >= 0);
+        ASSERT_GE(pfe_codec_encode_grade_preview(&f, &m, 0x33U), 0);
+        ASSERT_GE(pfe_preview_push(&g_pv, &f), 0);
     }
     assert_int_equal(g_pv.phase, PFE_PREVIEW_READY);
     g_serial++;
@@ -80,7 +82,7 @@ static uint32_t run_to_end(void)
     do {
         ph = pfe_predict_run(&g_pred, &g_pv, BUDGET);
         slices++;
-        assert_true(slices < 100000U);
+        ASSERT_LT(slices, 100000U);
     } while ((ph != PFE_PREDICT_DONE) && (ph != PFE_PREDICT_IDLE));
     return slices;
 }
@@ -123,7 +125,7 @@ static void load_road(const char *name, road_ppm_t *road)
     char path[512], err[256];
     (void)snprintf(path, sizeof path, "%s/%s.csv", g_roads, name);
     assert_int_equal(road_ppm_load(path, road, err, sizeof err), 0);
-    assert_true(road->n_samples <= PFE_PREVIEW_MAX_SAMPLES);
+    ASSERT_LE(road->n_samples, PFE_PREVIEW_MAX_SAMPLES);
     assert_int_equal(road->spacing_mm % 1000U, 0U);
 }
 
@@ -152,10 +154,10 @@ static void check_road(const char *name, uint32_t n_vehicles, uint32_t travelled
            "(ref %.1f s, %+.4f %%), bounds [%.4f, %.4f] L, %u slices of %u units\n",
            name, n_vehicles, travelled_m, fuel, ref.fuel_l, e_fuel, time, ref.time_s, e_time,
            (double)r->fuel_lower_ul / 1e6, (double)r->fuel_upper_ul / 1e6, slices, BUDGET);
-    assert_true(fabs(e_fuel) < 1.0);
-    assert_true(fabs(e_time) < 1.0);
-    assert_true(r->fuel_lower_ul <= r->fuel_ul);
-    assert_true(r->fuel_ul <= r->fuel_upper_ul);
+    ASSERT_LT(fabs(e_fuel), 1.0);
+    ASSERT_LT(fabs(e_time), 1.0);
+    ASSERT_LE(r->fuel_lower_ul, r->fuel_ul);
+    ASSERT_LE(r->fuel_ul, r->fuel_upper_ul);
     assert_int_equal(r->distance_m, ((road.n_samples - first) * road.spacing_mm) / 1000U);
     road_ppm_free(&road);
 }
@@ -220,7 +222,7 @@ static void test_prepared_preview_is_reused(void **state)
     assert_int_equal(g_pred.phase, PFE_PREDICT_LOADING);
     const uint32_t slices_fresh = run_to_end();
     const pfe_predict_result_t *fresh = pfe_predict_result(&g_pred);
-    assert_true(slices_again < slices_fresh);
+    ASSERT_LT(slices_again, slices_fresh);
     assert_int_equal(again.fuel_ul, fresh->fuel_ul);
     assert_int_equal(again.fuel_lower_ul, fresh->fuel_lower_ul);
     assert_int_equal(again.fuel_upper_ul, fresh->fuel_upper_ul);
@@ -298,7 +300,7 @@ static void prepare_and_check(uint32_t n, uint32_t n_vehicles, uint32_t gap_mm, 
     while ((g_pred.phase == PFE_PREDICT_LOADING) || (g_pred.phase == PFE_PREDICT_WINDOWS)) {
         (void)pfe_predict_run(&g_pred, &g_pv, budget);
         calls++;
-        assert_true(calls < 100000U);
+        ASSERT_LT(calls, 100000U);
     }
     assert_int_equal(g_pred.phase, PFE_PREDICT_NOMINAL);
     check_windows_by_scan(&g_pred, grade, n, w);
@@ -421,13 +423,13 @@ static void test_flat_one_truck_literals(void **state)
     (void)run_to_end();
     const pfe_predict_result_t *r = pfe_predict_result(&g_pred);
     assert_true(r->valid);
-    assert_true(labs((long)r->time_ms - 480000L) < 100L);  /* 480.0 s */
-    assert_true(labs((long)r->fuel_ul - 4463000L) < 4500L); /* 4.463 L within 0.1 % */
+    ASSERT_LT(labs((long)r->time_ms - 480000L), 100L);     /* 480.0 s */
+    ASSERT_LT(labs((long)r->fuel_ul - 4463000L), 4500L);   /* 4.463 L within 0.1 % */
     /* The bounds' runs are the nominal one: the bounds differ from it by
      * the runs' discretisation only, and are widened to the prediction. */
-    assert_true(r->fuel_lower_ul <= r->fuel_ul);
-    assert_true(r->fuel_ul <= r->fuel_upper_ul);
-    assert_true((r->fuel_upper_ul - r->fuel_lower_ul) < 500U);
+    ASSERT_LE(r->fuel_lower_ul, r->fuel_ul);
+    ASSERT_LE(r->fuel_ul, r->fuel_upper_ul);
+    ASSERT_LT(r->fuel_upper_ul - r->fuel_lower_ul, 500U);
     printf("predict flat   N=1: fuel %llu uL, bounds [%llu, %llu] uL\n",
            (unsigned long long)r->fuel_ul, (unsigned long long)r->fuel_lower_ul,
            (unsigned long long)r->fuel_upper_ul);

@@ -22,6 +22,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include <errno.h>
 #include <math.h>
 #include <spawn.h>
@@ -51,11 +53,12 @@ static size_t g_n_created;
 /* Returns tmpdir/name, remembered for removal at the end. */
 static const char *tmp_path(const char *name)
 {
-    assert_true(g_n_created < MAX_CREATED);
+    ASSERT_LT(g_n_created, (size_t)MAX_CREATED);
     char *p = malloc(PATH_LEN);
     assert_non_null(p);
     const int n = snprintf(p, PATH_LEN, "%s/%s", g_dir, name);
-    assert_true(n > 0 && n < PATH_LEN);
+    ASSERT_GT(n, 0);
+    ASSERT_LT(n, PATH_LEN);
     g_created[g_n_created++] = p;
     return p;
 }
@@ -90,7 +93,7 @@ static void expect_error(const char *path, const char *suffix)
     assert_string_equal(err, expected);
     assert_int_equal(road.n_samples, 0);
     assert_null(road.grade_percent);
-    assert_true(road.spacing_m == 0.0);
+    ASSERT_EQ(road.spacing_m, 0.0);
     road_profile_free(&road);
 }
 
@@ -129,12 +132,12 @@ static void test_good_with_header(void **state)
                        "50,-30\n"),
             &road);
     assert_int_equal(road.n_samples, 5);
-    assert_true(road.spacing_m == 12.5);
-    assert_true(road.grade_percent[0] == 0.0);
-    assert_true(road.grade_percent[1] == 1.25);
-    assert_true(road.grade_percent[2] == -0.5);
-    assert_true(road.grade_percent[3] == 30.0);
-    assert_true(road.grade_percent[4] == -30.0);
+    ASSERT_EQ(road.spacing_m, 12.5);
+    ASSERT_EQ(road.grade_percent[0], 0.0);
+    ASSERT_EQ(road.grade_percent[1], 1.25);
+    ASSERT_EQ(road.grade_percent[2], -0.5);
+    ASSERT_EQ(road.grade_percent[3], 30.0);
+    ASSERT_EQ(road.grade_percent[4], -30.0);
     road_profile_free(&road);
     assert_int_equal(road.n_samples, 0);
     assert_null(road.grade_percent);
@@ -151,11 +154,11 @@ static void test_good_without_header_spaces_tabs(void **state)
                        "36.0009,2E0\n"),
             &road);
     assert_int_equal(road.n_samples, 4);
-    assert_true(road.spacing_m == 12.0);
-    assert_true(road.grade_percent[0] == 0.001);
-    assert_true(road.grade_percent[1] == -0.002);
-    assert_true(road.grade_percent[2] == 0.35);
-    assert_true(road.grade_percent[3] == 2.0);
+    ASSERT_EQ(road.spacing_m, 12.0);
+    ASSERT_EQ(road.grade_percent[0], 0.001);
+    ASSERT_EQ(road.grade_percent[1], -0.002);
+    ASSERT_EQ(road.grade_percent[2], 0.35);
+    ASSERT_EQ(road.grade_percent[3], 2.0);
     road_profile_free(&road);
 }
 
@@ -171,9 +174,9 @@ static void test_crlf(void **state)
                        "10,-2\r\n"),
             &road);
     assert_int_equal(road.n_samples, 2);
-    assert_true(road.spacing_m == 10.0);
-    assert_true(road.grade_percent[0] == 1.0);
-    assert_true(road.grade_percent[1] == -2.0);
+    ASSERT_EQ(road.spacing_m, 10.0);
+    ASSERT_EQ(road.grade_percent[0], 1.0);
+    ASSERT_EQ(road.grade_percent[1], -2.0);
     road_profile_free(&road);
 
     expect_text_error("crlf_bad.csv", "0,1\r\n12,2\r\n25,3\r\n",
@@ -200,10 +203,10 @@ static void test_comments_and_blank_lines(void **state)
                        "\n"),
             &road);
     assert_int_equal(road.n_samples, 3);
-    assert_true(road.spacing_m == 2.0);
-    assert_true(road.grade_percent[0] == 1.0);
-    assert_true(road.grade_percent[1] == 2.0);
-    assert_true(road.grade_percent[2] == 3.0);
+    ASSERT_EQ(road.spacing_m, 2.0);
+    ASSERT_EQ(road.grade_percent[0], 1.0);
+    ASSERT_EQ(road.grade_percent[1], 2.0);
+    ASSERT_EQ(road.grade_percent[2], 3.0);
     road_profile_free(&road);
 
     /* Line numbers count comment and blank lines. */
@@ -224,8 +227,8 @@ static void test_bom_and_no_final_newline(void **state)
     road_profile_t road;
     load_ok(write_text("bom.csv", "\xEF\xBB\xBF" "distance_m,grade_percent\n0,1\n1,2"), &road);
     assert_int_equal(road.n_samples, 2);
-    assert_true(road.spacing_m == 1.0);
-    assert_true(road.grade_percent[1] == 2.0);
+    ASSERT_EQ(road.spacing_m, 1.0);
+    ASSERT_EQ(road.grade_percent[1], 2.0);
     road_profile_free(&road);
 }
 
@@ -400,7 +403,7 @@ static void test_distance_order_and_spacing(void **state)
     /* 1 mm off either way is accepted. */
     load_ok(write_text("dist_1mm.csv", "0,1\n12,1\n24.001,1\n35.999,1\n"), &road);
     assert_int_equal(road.n_samples, 4);
-    assert_true(road.spacing_m == 12.0);
+    ASSERT_EQ(road.spacing_m, 12.0);
     road_profile_free(&road);
 }
 
@@ -421,23 +424,23 @@ static void test_row_limit(void **state)
     const char *path = tmp_path("rows.csv");
     FILE *f = fopen(path, "wb");
     assert_non_null(f);
-    assert_true(fputs("distance_m,grade_percent\n", f) >= 0);
+    ASSERT_GE(fputs("distance_m,grade_percent\n", f), 0);
     for (unsigned k = 0; k < 1000000u; k++) {
-        assert_true(fprintf(f, "%u,%u\n", k, k % 3u) > 0);
+        ASSERT_GT(fprintf(f, "%u,%u\n", k, k % 3u), 0);
     }
     assert_int_equal(fclose(f), 0);
 
     road_profile_t road;
     load_ok(path, &road);
     assert_int_equal(road.n_samples, 1000000);
-    assert_true(road.spacing_m == 1.0);
-    assert_true(road.grade_percent[999999] == 0.0);   /* 999999 % 3 */
-    assert_true(road.grade_percent[999998] == 2.0);
+    ASSERT_EQ(road.spacing_m, 1.0);
+    ASSERT_EQ(road.grade_percent[999999], 0.0);       /* 999999 % 3 */
+    ASSERT_EQ(road.grade_percent[999998], 2.0);
     road_profile_free(&road);
 
     f = fopen(path, "ab");
     assert_non_null(f);
-    assert_true(fputs("1000000,0\n", f) >= 0);
+    ASSERT_GE(fputs("1000000,0\n", f), 0);
     assert_int_equal(fclose(f), 0);
     expect_error(path, ":1000002: too many rows (limit 1000000)");
 }
@@ -464,9 +467,9 @@ static void test_error_buffer_and_arguments(void **state)
 
     char msg[ERR_LEN];
     assert_int_equal(road_profile_load(bad, NULL, msg, sizeof msg), -1);
-    assert_true(strlen(msg) > 0u);
+    ASSERT_GT(strlen(msg), 0u);
     assert_int_equal(road_profile_load(NULL, &road, msg, sizeof msg), -1);
-    assert_true(strlen(msg) > 0u);
+    ASSERT_GT(strlen(msg), 0u);
 
     /* free is safe on an empty profile, twice, and on NULL. */
     road_profile_free(&road);
@@ -565,15 +568,15 @@ static void test_mutations_never_crash(void **state)
         road_profile_t road;
         const int rc = road_profile_load(path, &road, err, sizeof err);
         if (rc == 0) {
-            assert_true(road.n_samples >= 2u);
-            assert_true(road.spacing_m > 0.0);
+            ASSERT_GE(road.n_samples, 2u);
+            ASSERT_GT(road.spacing_m, 0.0);
             for (size_t k = 0; k < road.n_samples; k++) {
-                assert_true(fabs(road.grade_percent[k]) <= 30.0);
+                ASSERT_LE(fabs(road.grade_percent[k]), 30.0);
             }
         } else {
             assert_int_equal(rc, -1);
             assert_int_equal(strncmp(err, path, strlen(path)), 0);
-            assert_true(strlen(err) > strlen(path) + 2u);
+            ASSERT_GT(strlen(err), strlen(path) + 2u);
         }
         road_profile_free(&road);
     }
@@ -593,7 +596,8 @@ static const char *road_path(const char *name)
 {
     static char path[PATH_LEN];
     const int n = snprintf(path, sizeof path, "%s/%s.csv", g_roads_dir, name);
-    assert_true(n > 0 && n < (int)sizeof path);
+    ASSERT_GT(n, 0);
+    ASSERT_LT(n, (int)sizeof path);
     return path;
 }
 
@@ -647,7 +651,9 @@ static void regenerate_and_compare(const char *name)
     }
     int status = 0;
     assert_int_equal(waitpid(pid, &status, 0), pid);
-    assert_true(WIFEXITED(status));
+    if (!WIFEXITED(status)) {
+        fail_msg("%s did not exit (wait status 0x%x)", g_roadgen, (unsigned)status);
+    }
     assert_int_equal(WEXITSTATUS(status), 0);
 
     size_t len_new = 0u;
@@ -688,17 +694,17 @@ static void test_roads_flat_and_uphill(void **state)
     road_profile_t road;
     load_ok(road_path("flat"), &road);
     assert_int_equal(road.n_samples, 1000);
-    assert_true(road.spacing_m == 12.0);
+    ASSERT_EQ(road.spacing_m, 12.0);
     for (size_t k = 0; k < road.n_samples; k++) {
-        assert_true(road.grade_percent[k] == 0.0);
+        ASSERT_EQ(road.grade_percent[k], 0.0);
     }
     road_profile_free(&road);
 
     load_ok(road_path("uphill"), &road);
     assert_int_equal(road.n_samples, 1000);
-    assert_true(road.spacing_m == 12.0);
+    ASSERT_EQ(road.spacing_m, 12.0);
     for (size_t k = 0; k < road.n_samples; k++) {
-        assert_true(road.grade_percent[k] == 2.0);
+        ASSERT_EQ(road.grade_percent[k], 2.0);
     }
     road_profile_free(&road);
 }
@@ -714,7 +720,7 @@ static void test_road_hilly_shape(void **state)
     road_profile_t road;
     load_ok(road_path("hilly"), &road);
     assert_int_equal(road.n_samples, 1000);
-    assert_true(road.spacing_m == 12.0);
+    ASSERT_EQ(road.spacing_m, 12.0);
 
     int32_t ppm[1000];
     uint32_t spacing_mm = 0u;
@@ -735,14 +741,15 @@ static void test_road_hilly_shape(void **state)
         longest = (run > longest) ? run : longest;
         if (k > 0u) {
             const int32_t step = ppm[k] - ppm[k - 1u];
-            assert_true(step >= -2500 && step <= 2500);
+            ASSERT_GE(step, -2500);
+            ASSERT_LE(step, 2500);
             crests += (ppm[k - 1u] > 0 && ppm[k] <= 0) ? 1 : 0;
         }
     }
     assert_int_equal(lo, -30000);
     assert_int_equal(hi, 40000);
-    assert_true(longest * 12 >= 1000);
-    assert_true(crests >= 3);
+    ASSERT_GE(longest * 12, 1000);
+    ASSERT_GE(crests, 3);
     road_profile_free(&road);
 }
 

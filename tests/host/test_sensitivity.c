@@ -28,6 +28,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "lib/road_csv.h"
 #include "ref/sensitivity_run.h"
 
@@ -74,12 +76,12 @@ static void assert_rel_near(double x, double expected, double rel)
 static void assert_same_result(const sens_result_t *a, const sens_result_t *b)
 {
     /* Exact equality: the same calibration must give the same run. */
-    assert_true(a->fuel_l == b->fuel_l);
-    assert_true(a->time_s == b->time_s);
-    assert_true(a->mean_kmh == b->mean_kmh);
-    assert_true(a->min_kmh == b->min_kmh);
-    assert_true(a->max_kmh == b->max_kmh);
-    assert_true(a->power_limited_pct == b->power_limited_pct);
+    ASSERT_EQ(a->fuel_l, b->fuel_l);
+    ASSERT_EQ(a->time_s, b->time_s);
+    ASSERT_EQ(a->mean_kmh, b->mean_kmh);
+    ASSERT_EQ(a->min_kmh, b->min_kmh);
+    ASSERT_EQ(a->max_kmh, b->max_kmh);
+    ASSERT_EQ(a->power_limited_pct, b->power_limited_pct);
     assert_int_equal(a->steps, b->steps);
 }
 
@@ -116,9 +118,9 @@ static void test_flat_nominal_by_hand(void **state)
     const sens_result_t r = run(&g_flat, SENS_NOMINAL, 0);
     assert_rel_near(r.fuel_l, 19.3950419, 1e-8);
     assert_rel_near(r.time_s, 480.0, 1e-12);
-    assert_true(r.min_kmh == 90.0);
-    assert_true(r.max_kmh == 90.0);
-    assert_true(r.power_limited_pct == 0.0);
+    ASSERT_EQ(r.min_kmh, 90.0);
+    ASSERT_EQ(r.max_kmh, 90.0);
+    ASSERT_EQ(r.power_limited_pct, 0.0);
     assert_int_equal(r.steps, 1200);
     assert_rel_near(r.gap_m, 10.0, 0.0);
 }
@@ -151,7 +153,7 @@ static void test_zero_change_is_nominal(void **state)
     /* ... and a change that is not zero does show (the check can fail). */
     const sens_result_t nom = run(&hilly, SENS_NOMINAL, 0);
     const sens_result_t heavier = run(&hilly, SENS_MASS, 1);
-    assert_true(heavier.fuel_l > nom.fuel_l);
+    ASSERT_GT(heavier.fuel_l, nom.fuel_l);
     road_profile_free(&hilly);
 }
 
@@ -167,15 +169,15 @@ static void test_flat_power_above_need_leaves_fuel_unchanged(void **state)
     const size_t n = sens_steps(SENS_POWER, &steps);
     for (size_t k = 0U; k < n; k++) {
         const sens_result_t r = run(&g_flat, SENS_POWER, steps[k]);
-        assert_true(r.power_limited_pct == 0.0);
+        ASSERT_EQ(r.power_limited_pct, 0.0);
         assert_same_result(&r, &nom);
     }
     /* Below the need (-60 %: 100 kW a truck) the limit binds: the platoon
      * slows and the fuel changes. */
     const sens_result_t weak = run(&g_flat, SENS_POWER, -60);
-    assert_true(weak.power_limited_pct > 50.0);
-    assert_true(weak.time_s > nom.time_s + 1.0);
-    assert_true(weak.fuel_l != nom.fuel_l);
+    ASSERT_GT(weak.power_limited_pct, 50.0);
+    ASSERT_GT(weak.time_s, nom.time_s + 1.0);
+    ASSERT_NE(weak.fuel_l, nom.fuel_l);
 }
 
 /* Flat road: 0 % grade times any scale is 0 %: nothing changes. */
@@ -213,8 +215,8 @@ static void test_flat_fuel_rises_with_gap(void **state)
     double last = 0.0;
     for (size_t k = 0U; k < n; k++) {
         const sens_result_t r = run(&g_flat, SENS_TIME_GAP, steps[k]);
-        assert_true(r.fuel_l > last);
-        assert_true(r.min_kmh == 90.0);
+        ASSERT_GT(r.fuel_l, last);
+        ASSERT_EQ(r.min_kmh, 90.0);
         last = r.fuel_l;
     }
 }
@@ -228,9 +230,9 @@ static void test_uphill_nominal_power_limited(void **state)
 {
     (void)state;
     const sens_result_t r = run(&g_uphill, SENS_NOMINAL, 0);
-    assert_true(r.power_limited_pct > 99.0);
-    assert_true(fabs(r.min_kmh - 74.31) < 0.02);
-    assert_true(r.max_kmh < 90.0);
+    ASSERT_GT(r.power_limited_pct, 99.0);
+    ASSERT_NEAR_LT(r.min_kmh, 74.31, 0.02);
+    ASSERT_LT(r.max_kmh, 90.0);
 }
 
 /* Uphill: fuel rises at every step of cw*Af, of mass and of grade: more
@@ -249,9 +251,9 @@ static void check_uphill_rising(sens_param_t p)
                      (long)steps[k], r.fuel_l, last.fuel_l);
         }
         if (p == SENS_POWER) {
-            assert_true(r.time_s <= last.time_s);
+            ASSERT_LE(r.time_s, last.time_s);
         } else {
-            assert_true(r.time_s >= last.time_s);
+            ASSERT_GE(r.time_s, last.time_s);
         }
         last = r;
     }
@@ -322,8 +324,8 @@ static void test_stall_is_reported(void **state)
     char err[256];
     assert_int_equal(sens_run(&s, &steep, SENS_GRADE, 50, &r, err, sizeof err), 0);
     assert_int_equal(r.stalled, 1);
-    assert_true(r.stall_position_m > 0.0);
-    assert_true(r.stall_position_m < 12000.0);
+    ASSERT_GT(r.stall_position_m, 0.0);
+    ASSERT_LT(r.stall_position_m, 12000.0);
 }
 
 int main(int argc, char **argv)

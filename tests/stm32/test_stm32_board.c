@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "hal/stm32f4/hal_stm32_board.h"
 #include "hal/stm32f4/hal_stm32_time.h"
 #include "tests/stm32/reg_model.h"
@@ -39,12 +41,12 @@ static void test_extension_to_64_bits(void **state)
     memset(&g_tim, 0, sizeof g_tim);
     /* No wrap pending: high word and counter as they are. */
     g_tim.cnt = 0xFFFFFFF0U;
-    assert_true(hal_stm32_time_read(&g_tim, 2U) == 0x00000002FFFFFFF0ULL);
+    assert_int_equal(hal_stm32_time_read(&g_tim, 2U), 0x00000002FFFFFFF0ULL);
     /* Wrapped, interrupt not yet run (UIF pending): the high word plus one,
      * and the counter read again after the flag. */
     g_tim.sr = TIM_SR_UIF;
     g_tim.cnt = 0x00000005U;
-    assert_true(hal_stm32_time_read(&g_tim, 2U) == 0x0000000300000005ULL);
+    assert_int_equal(hal_stm32_time_read(&g_tim, 2U), 0x0000000300000005ULL);
     /* The interrupt: one wrap counted, flag cleared (written 0: rc_w0). */
     reg_model_rc_w0 = &g_tim.sr;
     g_time.tim = &g_tim;
@@ -52,7 +54,7 @@ static void test_extension_to_64_bits(void **state)
     hal_stm32_time_isr(&g_time);
     assert_int_equal(g_time.wraps, 3U);
     assert_int_equal(g_tim.sr, 0U);
-    assert_true(hal_stm32_time_read(&g_tim, g_time.wraps) == 0x0000000300000005ULL);
+    assert_int_equal(hal_stm32_time_read(&g_tim, g_time.wraps), 0x0000000300000005ULL);
     /* A compare flag alone counts no wrap. */
     g_tim.sr = TIM_SR_CC1IF;
     hal_stm32_time_isr(&g_time);
@@ -62,7 +64,7 @@ static void test_extension_to_64_bits(void **state)
     /* hal_stm32_now_us() reads the clock in use; a late wait returns at once. */
     hal_stm32_time_use(&g_time);
     g_tim.cnt = 1000U;
-    assert_true(hal_stm32_now_us() == 0x00000003000003E8ULL);
+    assert_int_equal(hal_stm32_now_us(), 0x00000003000003E8ULL);
     assert_int_equal(hal_time_wait_until_us(&g_time, 5U), 0);
     assert_int_equal(g_time.waits_late, 1U);
     assert_int_equal(reg_model_irq_depth, 0U); /* every mask undone */

@@ -15,6 +15,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "firmware/pfe_codec.h"
 #include "hal/hal_ecu_loop.h"
 #include "hal/stm32f4/hal_stm32_ecu.h"
@@ -75,7 +77,7 @@ static void test_device_status_reports_the_controller_and_the_flash(void **state
     pfe_msg_device_status_t st;
     int seen;
     run_ticks(200U, &st, &seen);
-    assert_true(seen >= 0);
+    ASSERT_GE(seen, 0);
     assert_int_equal(st.reset_cause.value, 1U);
     assert_int_equal(st.reset_cause.state, PFE_SIG_VALID);
     assert_int_equal(st.bus_off_events.value, 0U);
@@ -99,7 +101,7 @@ static void test_device_status_reports_the_controller_and_the_flash(void **state
     bxcan_node_rx_errors(g_nm, 130U);
     flash_model.powered = false;
     run_ticks(150U, &st, &seen);
-    assert_true(seen >= 0);
+    ASSERT_GE(seen, 0);
     assert_int_equal(st.bus_off_events.value, 1U);
     assert_int_equal(st.bus_off.value, 0U);               /* recovered */
     assert_int_equal(st.rx_fifo_overruns.value, 1U);

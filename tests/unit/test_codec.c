@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_can.h"
 #include "pfe_codec.h"
 #include "pfe_fixed.h"
@@ -163,14 +165,14 @@ static void test_signal_table_is_consistent(void **state)
         for (uint32_t i = msg->first_signal; i < (uint32_t)msg->first_signal + msg->n_signals; i++) {
             const pfe_codec_signal_t *a = &pfe_codec_signals[i];
             assert_in_range(a->length, 1, 32);
-            assert_true(((uint32_t)a->start_bit + a->length) <= (8U * msg->dlc));
+            ASSERT_LE((uint32_t)a->start_bit + a->length, 8U * msg->dlc);
             assert_int_equal(a->byte_order, PFE_CODEC_LITTLE_ENDIAN);
             assert_false(a->is_signed);
-            assert_true(a->scale_den > 0);
-            assert_true(a->offset_den > 0);
-            assert_true(a->raw_min <= a->raw_max);
+            ASSERT_GT(a->scale_den, 0);
+            ASSERT_GT(a->offset_den, 0);
+            ASSERT_LE(a->raw_min, a->raw_max);
             if (a->length < 32U) {
-                assert_true(a->raw_max < (1UL << a->length));
+                ASSERT_LT(a->raw_max, 1UL << a->length);
             }
             const uint64_t ma = (((uint64_t)1 << a->length) - 1U) << a->start_bit;
             for (uint32_t k = i + 1U; k < (uint32_t)msg->first_signal + msg->n_signals; k++) {
@@ -178,7 +180,7 @@ static void test_signal_table_is_consistent(void **state)
                 const uint64_t mb = (((uint64_t)1 << b->length) - 1U) << b->start_bit;
                 const bool exclusive = (a->mux >= 0) && (b->mux >= 0) && (a->mux != b->mux);
                 if (!exclusive) {
-                    assert_true((ma & mb) == 0U);
+                    assert_int_equal(ma & mb, 0U);
                 }
             }
         }
@@ -708,7 +710,7 @@ static void test_grade_from_pitch(void **state)
     int32_t prev = -1;
     for (int32_t u = 0; u <= 26564000; u += 2000) {
         const int32_t g = pfe_codec_grade_ppm_from_pitch(u, NULL);
-        assert_true(g >= prev);
+        ASSERT_GE(g, prev);
         prev = g;
     }
 }
@@ -768,7 +770,7 @@ static void test_grade_from_pitch_against_double(void **state)
     };
     for (uint32_t k = 0U; k < sizeof known / sizeof known[0]; k++) {
         const double r = ref_grade_ppm(known[k].pitch_udeg);
-        assert_true(abs_d(r - known[k].exact_ppm) <= (1e-9 * known[k].exact_ppm));
+        ASSERT_NEAR(r, known[k].exact_ppm, 1e-9 * known[k].exact_ppm);
     }
     /* hand-computed results: rounding to whole ppm, either side of a half */
     assert_int_equal(pfe_codec_grade_ppm_from_pitch(28, NULL), 0);
@@ -1224,7 +1226,7 @@ static void test_preview_restart_and_counts(void **state)
     f = preview_data(9U, 0U, 3U);
     assert_int_equal(pfe_preview_push(pv, &f), PFE_PREVIEW_ENOHEADER);
     assert_int_equal(pfe_preview_push(pv, &f), PFE_PREVIEW_ENOHEADER);
-    assert_true(pv->frames_rejected == UINT32_MAX);
+    assert_int_equal(pv->frames_rejected, UINT32_MAX);
 }
 
 /* ------------------------------------------------------------ outputs */
@@ -1325,12 +1327,12 @@ static void test_platoon_fuel(void **state)
     memset(&m, 0xA5, sizeof m);
     assert_int_equal(pfe_codec_decode_platoon_fuel(&f, &m), PFE_OK);
     assert_int_equal(m.fuel_rate_nl_s.value, 41666667);
-    assert_true(m.fuel_used_ul.value == 12345678000ULL);
+    assert_int_equal(m.fuel_used_ul.value, 12345678000ULL);
     assert_int_equal(m.fuel_used_ul.state, OK_);
     f = frame8(0x98FF028CUL, 0x00, 0x00, 0xFF, 0xFF, 0xFF, 0xFA, 0xFF, 0xFF);
     assert_int_equal(pfe_codec_decode_platoon_fuel(&f, &m), PFE_OK);
     assert_int_equal(m.fuel_rate_nl_s.value, 0);
-    assert_true(m.fuel_used_ul.value == 4211081215000ULL);
+    assert_int_equal(m.fuel_used_ul.value, 4211081215000ULL);
     f.data[5] = 0xFB;
     assert_int_equal(pfe_codec_decode_platoon_fuel(&f, &m), PFE_OK);
     assert_int_equal(m.fuel_used_ul.state, OOR);
@@ -1368,9 +1370,9 @@ static void test_hrlfc(void **state)
     memset(&m, 0xA5, sizeof m);
     assert_int_equal(pfe_codec_decode_hrlfc(&f, &m), PFE_OK);
     assert_int_equal(m.trip_fuel_ul.state, NA);
-    assert_true(m.trip_fuel_ul.value == 0U);
+    assert_int_equal(m.trip_fuel_ul.value, 0U);
     assert_int_equal(m.total_fuel_ul.state, OK_);
-    assert_true(m.total_fuel_ul.value == 1235000U);
+    assert_int_equal(m.total_fuel_ul.value, 1235000U);
     f = frame8(0x98FD0900UL, 0x00, 0x00, 0x00, 0xFB, 0x00, 0x00, 0x00, 0xFE);
     assert_int_equal(pfe_codec_decode_hrlfc(&f, &m), PFE_OK);
     assert_int_equal(m.trip_fuel_ul.state, OOR);
@@ -1630,7 +1632,7 @@ static void test_name_pack_unpack(void **state)
     (void)state;
     uint64_t v = 0U;
     assert_int_equal(pfe_j1939_name_pack(&k_name, &v), PFE_OK);
-    assert_true(v == 0xA9C8828D247ABCDEULL);
+    assert_int_equal(v, 0xA9C8828D247ABCDEULL);
     pfe_j1939_name_t n;
     memset(&n, 0xA5, sizeof n);
     pfe_j1939_name_unpack(v, &n);
@@ -1650,7 +1652,7 @@ static void test_name_pack_unpack(void **state)
     assert_int_equal(n.manufacturer_code, 0x7FF);
     assert_int_equal(n.reserved, 1);
     assert_int_equal(pfe_j1939_name_pack(&n, &v), PFE_OK);
-    assert_true(v == UINT64_MAX);
+    assert_int_equal(v, UINT64_MAX);
     /* fields wider than their bits are refused */
     n = k_name;
     n.identity_number = 0x200000UL;

@@ -14,6 +14,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_can.h"
 #include "pfe_codec.h"
@@ -314,12 +316,12 @@ static void test_prediction_set_up_refuses_bad_arguments(void **state)
 static void test_saturating_helpers_at_their_lower_ends(void **state)
 {
     (void)state;
-    assert_true(pfe_clamp_i64(-5, -3, 3) == -3);
-    assert_true(pfe_clamp_i64(INT64_MIN, 0, 1) == 0);
-    assert_true(pfe_sat_add_i64(INT64_MIN + 5, -6) == INT64_MIN);
-    assert_true(pfe_sat_add_i64(INT64_MIN + 5, -5) == INT64_MIN);
-    assert_true(pfe_sat_add_i64(INT64_MIN + 5, -4) == INT64_MIN + 1);
-    assert_true(pfe_sat_add_i64(-7, -8) == -15);
+    assert_int_equal(pfe_clamp_i64(-5, -3, 3), -3);
+    assert_int_equal(pfe_clamp_i64(INT64_MIN, 0, 1), 0);
+    assert_int_equal(pfe_sat_add_i64(INT64_MIN + 5, -6), INT64_MIN);
+    assert_int_equal(pfe_sat_add_i64(INT64_MIN + 5, -5), INT64_MIN);
+    assert_int_equal(pfe_sat_add_i64(INT64_MIN + 5, -4), INT64_MIN + 1);
+    assert_int_equal(pfe_sat_add_i64(-7, -8), -15);
 }
 
 int main(void)

@@ -12,6 +12,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "hal/fake/hal_fake.h"
 #include "pfe_calib.h"
 #include "pfe_can.h"
@@ -20,44 +22,15 @@
 #include "pfe_fixed.h"
 #include "pfe_nvm.h"
 
+#include "ecu_harness.h"
+
 #define OTHER_SA 0x00U
-#define OUR_NAME 0x80A0000012345678ULL /* arbitrary address capable */
-
-static pfe_ecu_t g_ecu;
-static uint64_t g_now;
-static pfe_can_frame_t g_tx[PFE_ECU_TX_MAX];
-static uint32_t g_ntx;
-
-static pfe_ecu_config_t config(void)
-{
-    const pfe_ecu_config_t c = {
-        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
-        .name = OUR_NAME,
-        .save_interval_ms = 1000U,
-        .vehicle = &pfe_default_vehicle,
-        .env = &pfe_default_env,
-        .drag = &pfe_default_drag,
-        .default_vehicles = 1U,
-        .default_position = 0U,
-        .default_gap_mm = 10000U,
-        .cruise = &pfe_default_cruise,
-        .default_set_speed_mm_s = 25000,
-    };
-    return c;
-}
-
-static void start(const pfe_ecu_config_t *c, const pfe_nvm_state_t *restored, int slot)
-{
-    g_now = 1000000U;
-    memset(&g_ecu, 0xA5, sizeof g_ecu);
-    assert_int_equal(pfe_ecu_init(&g_ecu, c, restored, slot, g_now), PFE_OK);
-}
 
 static void send_speed(int32_t speed_mm_s, pfe_sig_state_t st)
 {
     pfe_can_frame_t f;
     const pfe_msg_ccvs1_t m = {{speed_mm_s, st}};
-    assert_true(pfe_codec_encode_ccvs1(&f, &m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_ccvs1(&f, &m, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
 }
 
@@ -65,7 +38,7 @@ static void send_pitch(int32_t pitch_udeg)
 {
     pfe_can_frame_t f;
     const pfe_msg_ssi_t m = {{pitch_udeg, PFE_SIG_VALID}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ssi(&f, &m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_ssi(&f, &m, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
 }
 
@@ -82,21 +55,11 @@ static void tick(bool speed, bool pitch)
     g_now += PFE_ECU_TICK_US;
 }
 
-static const pfe_can_frame_t *sent(uint32_t pgn)
-{
-    for (uint32_t k = 0U; k < g_ntx; k++) {
-        if (pfe_j1939_pgn(g_tx[k].id) == pgn) {
-            return &g_tx[k];
-        }
-    }
-    return NULL;
-}
-
 static void test_claims_address_then_keeps_schedule(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     tick(true, true);
     const pfe_can_frame_t *claim = sent(PFE_PGN_ADDRESS_CLAIMED);
     assert_non_null(claim);
@@ -143,7 +106,7 @@ static pfe_msg_lfe1_t next_lfe1(bool speed, bool pitch)
         const pfe_can_frame_t *f = sent(PFE_PGN_LFE1);
         if (f != NULL) {
             pfe_msg_lfe1_t m;
-            assert_true(pfe_codec_decode_lfe1(f, &m) >= 0);
+            ASSERT_GE(pfe_codec_decode_lfe1(f, &m), 0);
             return m;
         }
     }
@@ -159,7 +122,7 @@ static pfe_msg_status_t next_status(bool speed, bool pitch)
         const pfe_can_frame_t *f = sent(PFE_PGN_STATUS);
         if (f != NULL) {
             pfe_msg_status_t m;
-            assert_true(pfe_codec_decode_status(f, &m) >= 0);
+            ASSERT_GE(pfe_codec_decode_status(f, &m), 0);
             return m;
         }
     }
@@ -173,7 +136,7 @@ static void test_fuel_rate_on_flat_road(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
     }
@@ -192,7 +155,7 @@ static void test_speed_timeout_within_three_periods_and_recovery(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
     }
@@ -210,9 +173,9 @@ static void test_speed_timeout_within_three_periods_and_recovery(void **state)
             na_at = t;
         }
     }
-    assert_true(na_at > last_rx);
+    ASSERT_GT(na_at, last_rx);
     /* Three periods plus one tick. */
-    assert_true((na_at - last_rx) <= (300000U + PFE_ECU_TICK_US));
+    ASSERT_LE(na_at - last_rx, 300000U + PFE_ECU_TICK_US);
     assert_int_equal(next_lfe1(false, true).fuel_rate_nl_s.state, PFE_SIG_NOT_AVAILABLE);
     pfe_msg_status_t st = next_status(false, true);
     assert_int_equal(st.speed_input, PFE_SIG_NOT_AVAILABLE);
@@ -230,7 +193,7 @@ static void test_grade_timeout_and_sender_error_values(void **state)
     /* With the flat road forbidden, a missing grade means no estimate. */
     pfe_ecu_config_t c = config();
     c.flat_grade_forbidden = true;
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
     }
@@ -238,9 +201,9 @@ static void test_grade_timeout_and_sender_error_values(void **state)
     tick(true, false);
     tick(true, false);
     tick(true, false);
-    assert_true((g_ecu.out->flags & PFE_EST_VALID) != 0U);
+    assert_int_not_equal(g_ecu.out->flags & PFE_EST_VALID, 0U);
     tick(true, false);
-    assert_true((g_ecu.out->flags & PFE_EST_GRADE_MISSING) != 0U);
+    assert_int_not_equal(g_ecu.out->flags & PFE_EST_GRADE_MISSING, 0U);
     pfe_msg_status_t st = next_status(true, false);
     assert_int_equal(st.grade_input, PFE_SIG_NOT_AVAILABLE);
     /* The sender reports an error in SPN 84: error, no estimate. */
@@ -250,25 +213,25 @@ static void test_grade_timeout_and_sender_error_values(void **state)
         }
         tick(false, true);
     }
-    assert_true((g_ecu.out->flags & PFE_EST_VALID) == 0U);
+    assert_int_equal(g_ecu.out->flags & PFE_EST_VALID, 0U);
     assert_int_equal(g_ecu.in[PFE_IN_SPEED].state, PFE_SIG_ERROR);
     /* Out of range (parameter-specific raw 0xFB00): out of range. */
     pfe_can_frame_t f;
     const pfe_msg_ccvs1_t m = {{25000, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ccvs1(&f, &m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_ccvs1(&f, &m, OTHER_SA), 0);
     f.data[1] = 0x00U;
     f.data[2] = 0xFBU;
     pfe_ecu_receive(&g_ecu, &f, g_now);
     tick(false, true);
     assert_int_equal(g_ecu.in[PFE_IN_SPEED].state, PFE_SIG_OUT_OF_RANGE);
-    assert_true((g_ecu.out->flags & PFE_EST_VALID) == 0U);
+    assert_int_equal(g_ecu.out->flags & PFE_EST_VALID, 0U);
 }
 
 static void test_requests(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 330U; k++) { /* HRLFC is sent 3 s after start, none other sending */
         tick(true, true);
     }
@@ -276,18 +239,19 @@ static void test_requests(void **state)
         tick(true, true);
     }
     pfe_can_frame_t f;
-    assert_true(pfe_codec_encode_request(&f, PFE_PGN_HRLFC, PFE_J1939_ADDR_GLOBAL, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_request(&f, PFE_PGN_HRLFC, PFE_J1939_ADDR_GLOBAL, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
     tick(true, true);
     assert_non_null(sent(PFE_PGN_HRLFC));
     /* Addressed to someone else: ignored. */
-    assert_true(pfe_codec_encode_request(&f, PFE_PGN_HRLFC, 0x33U, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_request(&f, PFE_PGN_HRLFC, 0x33U, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
     tick(true, true);
     assert_null(sent(PFE_PGN_HRLFC));
     /* Addressed to us, for the address claim. */
-    assert_true(pfe_codec_encode_request(&f, PFE_PGN_ADDRESS_CLAIMED, PFE_ECU_DEFAULT_ADDRESS,
-                                         OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_request(&f, PFE_PGN_ADDRESS_CLAIMED, PFE_ECU_DEFAULT_ADDRESS,
+                                       OTHER_SA),
+              0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
     tick(true, true);
     assert_non_null(sent(PFE_PGN_ADDRESS_CLAIMED));
@@ -299,7 +263,7 @@ static void claim_from_other(uint64_t name_value)
     pfe_j1939_name_t name;
     pfe_j1939_name_unpack(name_value, &name);
     pfe_can_frame_t f;
-    assert_true(pfe_codec_encode_address_claimed(&f, &name, PFE_ECU_DEFAULT_ADDRESS) >= 0);
+    ASSERT_GE(pfe_codec_encode_address_claimed(&f, &name, PFE_ECU_DEFAULT_ADDRESS), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
 }
 
@@ -307,7 +271,7 @@ static void test_address_claim_conflicts(void **state)
 {
     (void)state;
     pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     tick(true, true);
     /* A higher NAME claims our address: we keep it and say so again. */
     claim_from_other(OUR_NAME + 1U);
@@ -325,7 +289,7 @@ static void test_address_claim_conflicts(void **state)
 
     /* Not arbitrary address capable: cannot claim, then silence. */
     c.name = OUR_NAME & ~(1ULL << 63);
-    start(&c, NULL, -1);
+    start(&c);
     tick(true, true);
     claim_from_other(0x0000000000000001ULL);
     tick(true, true);
@@ -343,7 +307,7 @@ static void test_counters_reach_the_status_message(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 30U; k++) {
         tick(true, true);
     }
@@ -368,7 +332,7 @@ static pfe_msg_fuel_prediction_t next_prediction(void)
         const pfe_can_frame_t *f = sent(PFE_PGN_FUEL_PREDICTION);
         if (f != NULL) {
             pfe_msg_fuel_prediction_t m;
-            assert_true(pfe_codec_decode_fuel_prediction(f, &m) >= 0);
+            ASSERT_GE(pfe_codec_decode_fuel_prediction(f, &m), 0);
             return m;
         }
     }
@@ -389,7 +353,7 @@ static void send_flat_preview(uint32_t n, uint32_t spacing_m, uint8_t id)
     m.preview_id.value = id;
     m.sample_count.value = n;
     m.spacing_m.value = spacing_m;
-    assert_true(pfe_codec_encode_grade_preview(&f, &m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_grade_preview(&f, &m, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
     for (uint32_t k = 0U; k < n; k += PFE_PREVIEW_SAMPLES_PER_FRAME) {
         memset(&m, 0, sizeof m);
@@ -399,7 +363,7 @@ static void send_flat_preview(uint32_t n, uint32_t spacing_m, uint8_t id)
         for (uint32_t j = 0U; j < PFE_PREVIEW_SAMPLES_PER_FRAME; j++) {
             m.grade_ppm[j].state = ((k + j) < n) ? PFE_SIG_VALID : PFE_SIG_NOT_AVAILABLE;
         }
-        assert_true(pfe_codec_encode_grade_preview(&f, &m, OTHER_SA) >= 0);
+        ASSERT_GE(pfe_codec_encode_grade_preview(&f, &m, OTHER_SA), 0);
         pfe_ecu_receive(&g_ecu, &f, g_now);
         if ((k % 30U) == 27U) {
             tick(true, true);
@@ -414,7 +378,7 @@ static void test_prediction_over_a_preview(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
     }
@@ -435,18 +399,19 @@ static void test_prediction_over_a_preview(void **state)
     assert_int_equal(p.fuel_lower_ul.state, PFE_SIG_VALID);
     assert_int_equal(p.fuel_upper_ul.state, PFE_SIG_VALID);
     const uint32_t left_m = r->distance_m;
-    assert_true((left_m > 11800U) && (left_m <= 12000U));
+    ASSERT_GT(left_m, 11800U);
+    ASSERT_LE(left_m, 12000U);
     /* 0.01 L and 0.1 s on the bus. */
-    assert_true(labs((long)p.fuel_ul.value - (long)(left_m * 371.9)) <= 10000L);
-    assert_true(labs((long)p.time_ms.value - (long)(left_m * 40U)) <= 200L);
+    ASSERT_LE(labs((long)p.fuel_ul.value - (long)(left_m * 371.9)), 10000L);
+    ASSERT_LE(labs((long)p.time_ms.value - (long)(left_m * 40U)), 200L);
     /* One truck on a flat road: both bounds are the prediction. */
-    assert_true(labs((long)p.fuel_lower_ul.value - (long)p.fuel_ul.value) <= 10000L);
-    assert_true(labs((long)p.fuel_upper_ul.value - (long)p.fuel_ul.value) <= 10000L);
+    ASSERT_LE(labs((long)p.fuel_lower_ul.value - (long)p.fuel_ul.value), 10000L);
+    ASSERT_LE(labs((long)p.fuel_upper_ul.value - (long)p.fuel_ul.value), 10000L);
     /* Later predictions start further along. */
     for (uint32_t k = 0U; k < 300U; k++) {
         tick(true, true);
     }
-    assert_true(pfe_predict_result(&g_ecu.predict)->distance_m < left_m - 50U);
+    ASSERT_LT(pfe_predict_result(&g_ecu.predict)->distance_m, left_m - 50U);
     /* A new preview's header abandons the prediction in progress. */
     while (g_ecu.predict.phase == PFE_PREDICT_IDLE) {
         tick(true, true);
@@ -458,7 +423,7 @@ static void test_prediction_over_a_preview(void **state)
     m.preview_id.value = 2U;
     m.sample_count.value = 100U;
     m.spacing_m.value = 10U;
-    assert_true(pfe_codec_encode_grade_preview(&f, &m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_grade_preview(&f, &m, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
     tick(true, true);
     assert_int_equal(g_ecu.predict.phase, PFE_PREDICT_IDLE);
@@ -507,12 +472,12 @@ static void test_platoon_config_switches_the_model(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     pfe_can_frame_t f;
     const pfe_msg_platoon_config_t m = {{5U, PFE_SIG_VALID}, {2U, PFE_SIG_VALID},
                                         {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
                                         {25000, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
@@ -523,7 +488,7 @@ static void test_platoon_config_switches_the_model(void **state)
     /* The own rate is the third truck's, 35 % drag reduction: below a lone truck's. */
     const pfe_msg_lfe1_t own = next_lfe1(true, true);
     assert_int_equal(own.fuel_rate_nl_s.state, PFE_SIG_VALID);
-    assert_true(own.fuel_rate_nl_s.value < 9291666U);
+    ASSERT_LT(own.fuel_rate_nl_s.value, 9291666U);
     /* The config is not repeated: after 3 s it is stale, the module degraded. */
     for (uint32_t k = 0U; k < 300U; k++) {
         tick(true, true);
@@ -540,13 +505,13 @@ static void test_platoon_config_burst_last_wins(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 16U; k++) {
         pfe_can_frame_t f;
         const pfe_msg_platoon_config_t m = {{3U + (k % 4U), PFE_SIG_VALID}, {k % 3U, PFE_SIG_VALID},
                                             {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
                                             {25000, PFE_SIG_VALID}};
-        assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+        ASSERT_GE(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA), 0);
         pfe_ecu_receive(&g_ecu, &f, g_now);
     }
     tick(false, false);
@@ -574,7 +539,7 @@ static void test_platoon_config_burst_last_wins(void **state)
     const pfe_msg_platoon_config_t m = {{4U, PFE_SIG_VALID}, {1U, PFE_SIG_VALID},
                                         {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
                                         {25000, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
     f.dlc = 3U;
     pfe_ecu_receive(&g_ecu, &f, g_now);
@@ -598,7 +563,7 @@ static void test_platoon_build_that_fails_keeps_the_old_one(void **state)
     bad = pfe_default_vehicle;
     bad.mass_kg = 0U;
     c.vehicle_at[5] = &bad;
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < 100U; k++) {
         tick(true, true);
     }
@@ -608,7 +573,7 @@ static void test_platoon_build_that_fails_keeps_the_old_one(void **state)
     const pfe_msg_platoon_config_t m = {{6U, PFE_SIG_VALID}, {0U, PFE_SIG_VALID},
                                         {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
                                         {25000, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
     tick(true, true);
     assert_false(g_ecu.platoon_building);
@@ -625,18 +590,18 @@ static void test_mass_during_a_build(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     pfe_can_frame_t f;
     const pfe_msg_platoon_config_t m = {{20U, PFE_SIG_VALID}, {3U, PFE_SIG_VALID},
                                         {10000U, PFE_SIG_VALID}, {0U, PFE_SIG_NOT_AVAILABLE},
                                         {25000, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_platoon_config(&f, &m, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
     tick(false, false); /* started, trucks 0 .. 7 */
     assert_true(g_ecu.platoon_building);
     assert_int_equal(g_ecu.build_done, 8);
     const pfe_msg_cvw_t w = {{8000U, PFE_SIG_VALID}, {30000U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_cvw(&f, &w, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_cvw(&f, &w, OTHER_SA), 0);
     pfe_ecu_receive(&g_ecu, &f, g_now);
     tick(false, false); /* the mass: started again, trucks 0 .. 7 */
     assert_true(g_ecu.platoon_building);
@@ -662,7 +627,7 @@ static void test_nvm_write_failure_is_retried(void **state)
     (void)state;
     const pfe_ecu_config_t c = config(); /* saves every 1 s */
     const pfe_nvm_state_t restored = {7U, 5000U, 6000U, 0U, 0U, 0U};
-    start(&c, &restored, 1);
+    start_restored(&c, &restored, 1);
     for (uint32_t k = 0U; (k < 200U) && !pfe_ecu_nvm_due(&g_ecu); k++) {
         tick(true, true);
     }
@@ -697,7 +662,7 @@ static void test_full_queue_spreads_over_two_ticks(void **state)
 {
     (void)state;
     const pfe_ecu_config_t c = config();
-    start(&c, NULL, -1);
+    start(&c);
     for (uint32_t k = 0U; k < PFE_ECU_RX_QUEUE_LEN; k++) {
         send_pitch(0);
     }
@@ -726,10 +691,10 @@ static void test_resets_never_lose_more_than_one_save_interval(void **state)
         assert_int_equal(hal_nvm_read(&nvm, 1U, s1), 0);
         pfe_nvm_state_t restored;
         const int slot = pfe_nvm_pick(s0, s1, &restored);
-        assert_true(restored.own_fuel_ul >= last_restored); /* never backwards */
+        ASSERT_GE(restored.own_fuel_ul, last_restored);     /* never backwards */
         last_restored = restored.own_fuel_ul;
-        start(&c, &restored, slot);
-        assert_true(pfe_ecu_own_fuel_ul(&g_ecu) == restored.own_fuel_ul);
+        start_restored(&c, &restored, slot);
+        assert_int_equal(pfe_ecu_own_fuel_ul(&g_ecu), restored.own_fuel_ul);
         rng = (rng * 1103515245U) + 12345U;
         const uint32_t ticks = 1U + ((rng >> 8) % 300U); /* up to 3 s of driving */
         rng = (rng * 1103515245U) + 12345U;
@@ -757,16 +722,16 @@ static void test_resets_never_lose_more_than_one_save_interval(void **state)
             }
         }
         const uint64_t at_reset = pfe_ecu_own_fuel_ul(&g_ecu);
-        assert_true(at_reset >= saved);
+        ASSERT_GE(at_reset, saved);
         const uint64_t loss = at_reset - saved;
         worst_loss = (loss > worst_loss) ? loss : worst_loss;
     }
     /* One save interval (1 s) at 9.3 mL/s, plus a tick: 9.4 mL. */
     print_message("resets 1000, torn writes %lu, worst loss %llu uL, final total %llu uL\n", (unsigned long)torn,
                   (unsigned long long)worst_loss, (unsigned long long)last_restored);
-    assert_true(torn > 100U);
-    assert_true(worst_loss <= 9400U);
-    assert_true(last_restored > 1000000U);
+    ASSERT_GT(torn, 100U);
+    ASSERT_LE(worst_loss, 9400U);
+    ASSERT_GT(last_restored, 1000000U);
 }
 
 int main(void)

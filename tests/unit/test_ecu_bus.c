@@ -14,86 +14,43 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_can.h"
 #include "pfe_codec.h"
 #include "pfe_ecu.h"
 #include "pfe_vehicle.h"
 
+#include "ecu_harness.h"
+
 #define ENGINE 0x00U
 #define CAB 0x31U
 #define GNSS 0x1CU
 #define US PFE_ECU_DEFAULT_ADDRESS
-#define OUR_NAME 0x80A0000012345678ULL
-#define START_US 1000000U
-
-static pfe_ecu_t g_ecu;
-static uint64_t g_now;
-static pfe_can_frame_t g_tx[PFE_ECU_TX_MAX];
-static uint32_t g_ntx;
-
-static pfe_ecu_config_t config(void)
-{
-    const pfe_ecu_config_t c = {
-        .preferred_address = US,
-        .name = OUR_NAME,
-        .save_interval_ms = 1000U,
-        .vehicle = &pfe_default_vehicle,
-        .env = &pfe_default_env,
-        .drag = &pfe_default_drag,
-        .default_vehicles = 1U,
-        .default_position = 0U,
-        .default_gap_mm = 10000U,
-        .cruise = &pfe_default_cruise,
-        .default_set_speed_mm_s = 25000,
-    };
-    return c;
-}
-
-static void start(const pfe_ecu_config_t *c)
-{
-    g_now = START_US;
-    memset(&g_ecu, 0xA5, sizeof g_ecu);
-    assert_int_equal(pfe_ecu_init(&g_ecu, c, NULL, -1, g_now), PFE_OK);
-}
-
-static const pfe_can_frame_t *sent(uint32_t pgn)
-{
-    for (uint32_t k = 0U; k < g_ntx; k++) {
-        if (pfe_j1939_pgn(g_tx[k].id) == pgn) {
-            return &g_tx[k];
-        }
-    }
-    return NULL;
-}
-
-static void put(const pfe_can_frame_t *f)
-{
-    pfe_ecu_receive(&g_ecu, f, g_now);
-}
 
 static void ccvs1(uint8_t sa, pfe_sig_state_t st, int32_t mm_s)
 {
     pfe_can_frame_t f;
     const pfe_msg_ccvs1_t m = {{mm_s, st}};
-    assert_true(pfe_codec_encode_ccvs1(&f, &m, sa) >= 0);
-    put(&f);
+    ASSERT_GE(pfe_codec_encode_ccvs1(&f, &m, sa), 0);
+    receive(&f);
 }
 
 static void ssi(uint8_t sa, int32_t pitch_udeg)
 {
     pfe_can_frame_t f;
     const pfe_msg_ssi_t m = {{pitch_udeg, PFE_SIG_VALID}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ssi(&f, &m, sa) >= 0);
-    put(&f);
+    ASSERT_GE(pfe_codec_encode_ssi(&f, &m, sa), 0);
+    receive(&f);
 }
 
 static void lfe1(uint8_t sa, pfe_sig_state_t st, uint32_t nl_s)
 {
     pfe_can_frame_t f;
     const pfe_msg_lfe1_t m = {{nl_s, st}};
-    assert_true(pfe_codec_encode_lfe1(&f, &m, sa) >= 0);
-    put(&f);
+    ASSERT_GE(pfe_codec_encode_lfe1(&f, &m, sa), 0);
+    receive(&f);
 }
 
 /* What one tick of the bus carries: the engine's CCVS1 every 100 ms (speed),
@@ -236,8 +193,8 @@ static void test_grade_from_altitude(void **state)
             const int32_t alt_mm = 200000 + (int32_t)((g_ecu.odometer_um / 1000U) / 50U);
             const pfe_msg_vds_t m = {{0U, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE},
                                      {0, PFE_SIG_NOT_AVAILABLE}, {alt_mm, PFE_SIG_VALID}};
-            assert_true(pfe_codec_encode_vds(&f, &m, GNSS) >= 0);
-            put(&f);
+            ASSERT_GE(pfe_codec_encode_vds(&f, &m, GNSS), 0);
+            receive(&f);
         }
         tick_bus(&b);
         const pfe_can_frame_t *f = sent(PFE_PGN_INPUT_STATUS);
@@ -269,8 +226,8 @@ static void test_mass_from_cvw(void **state)
     const uint32_t rate_40t = own_fuel(&b).fuel_rate_nl_s.value;
     pfe_can_frame_t f;
     const pfe_msg_cvw_t m = {{8000U, PFE_SIG_VALID}, {12000U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_cvw(&f, &m, 0x27U) >= 0);
-    put(&f);
+    ASSERT_GE(pfe_codec_encode_cvw(&f, &m, 0x27U), 0);
+    receive(&f);
     const pfe_msg_own_fuel_t o = own_fuel(&b);
     assert_int_equal(o.fuel_rate_nl_s.state, PFE_SIG_VALID);
     print_message("flat 90 km/h: 40 t %u nL/s, 12 t %u nL/s\n", (unsigned)rate_40t,
@@ -281,8 +238,8 @@ static void test_mass_from_cvw(void **state)
     assert_int_equal(is.vehicle_mass_kg.value, 12000);
     /* an implausible weight is rejected and changes nothing */
     const pfe_msg_cvw_t bad = {{8000U, PFE_SIG_VALID}, {500U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_cvw(&f, &bad, 0x27U) >= 0);
-    put(&f);
+    ASSERT_GE(pfe_codec_encode_cvw(&f, &bad, 0x27U), 0);
+    receive(&f);
     run(&b, 2U);
     assert_int_equal(g_ecu.own_calib.mass_kg, 12000);
 }
@@ -301,8 +258,8 @@ static void test_does_not_shadow_the_engine(void **state)
         if ((k % 100U) == 50U) {
             pfe_can_frame_t f;
             const pfe_msg_hrlfc_t h = {{0U, PFE_SIG_NOT_AVAILABLE}, {123000U, PFE_SIG_VALID}};
-            assert_true(pfe_codec_encode_hrlfc(&f, &h, ENGINE) >= 0);
-            put(&f);
+            ASSERT_GE(pfe_codec_encode_hrlfc(&f, &h, ENGINE), 0);
+            receive(&f);
         }
         lfe1_out += (sent(PFE_PGN_LFE1) != NULL) ? 1U : 0U;
         assert_null(sent(PFE_PGN_HRLFC));
@@ -405,7 +362,7 @@ static void test_random_payloads(void **state)
                 lcg = (lcg * 1103515245U) + 12345U;
                 f.data[i] = (uint8_t)(lcg >> 24);
             }
-            put(&f);
+            receive(&f);
         }
         if (((g_now / 10000U) % 10U) != 0U) {
             ssi(ENGINE, 0);
@@ -532,8 +489,8 @@ static void test_identifies_the_truck_from_the_engine(void **state)
     /* CVW's mass comes first; the identified aux power stays */
     pfe_can_frame_t cf;
     const pfe_msg_cvw_t w = {{8000U, PFE_SIG_VALID}, {15000U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_cvw(&cf, &w, 0x27U) >= 0);
-    put(&cf);
+    ASSERT_GE(pfe_codec_encode_cvw(&cf, &w, 0x27U), 0);
+    receive(&cf);
     for (uint32_t k = 0U; k < 1500U; k++) { /* 15 s more of the engine's LFE1 */
         if (((g_now / 10000U) % 10U) == 0U) {
             v += a / 10000;
@@ -598,7 +555,7 @@ static void test_bad_frames_and_configurations(void **state)
         memset(&f, 0xFF, sizeof f);
         f.id = pfe_j1939_id(6U, pgns[k], PFE_J1939_ADDR_GLOBAL, 0x27U);
         f.dlc = 5U;
-        put(&f);
+        receive(&f);
     }
     run(&b, 1U);
     assert_int_equal(g_ecu.count.rx_rejected - before, 5);
@@ -606,13 +563,13 @@ static void test_bad_frames_and_configurations(void **state)
     pfe_can_frame_t f;
     const pfe_msg_vds_t up = {{0U, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE},
                               {0, PFE_SIG_NOT_AVAILABLE}, {100000, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_vds(&f, &up, GNSS) >= 0);
-    put(&f);
+    ASSERT_GE(pfe_codec_encode_vds(&f, &up, GNSS), 0);
+    receive(&f);
     run(&b, 100U);
     const pfe_msg_vds_t na = {{0U, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE},
                               {0, PFE_SIG_NOT_AVAILABLE}, {0, PFE_SIG_NOT_AVAILABLE}};
-    assert_true(pfe_codec_encode_vds(&f, &na, GNSS) >= 0);
-    put(&f);
+    ASSERT_GE(pfe_codec_encode_vds(&f, &na, GNSS), 0);
+    receive(&f);
     run(&b, 1U);
     assert_int_equal(g_ecu.in[PFE_IN_ALTITUDE].state, PFE_SIG_NOT_AVAILABLE);
     assert_false(g_ecu.altgrade.started);
@@ -631,8 +588,8 @@ static void test_bad_frames_and_configurations(void **state)
     for (uint32_t k = 0U; (k < 500U) && !hrlfc; k++) {
         if ((k % 100U) == 50U) {
             const pfe_msg_hrlfc_t h = {{0U, PFE_SIG_NOT_AVAILABLE}, {0U, PFE_SIG_NOT_AVAILABLE}};
-            assert_true(pfe_codec_encode_hrlfc(&f, &h, ENGINE) >= 0);
-            put(&f);
+            ASSERT_GE(pfe_codec_encode_hrlfc(&f, &h, ENGINE), 0);
+            receive(&f);
         }
         tick_bus(&b);
         hrlfc = sent(PFE_PGN_HRLFC) != NULL;

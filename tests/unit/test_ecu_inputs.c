@@ -13,46 +13,18 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_can.h"
 #include "pfe_codec.h"
 #include "pfe_ecu.h"
 #include "pfe_fixed.h"
 
+#include "ecu_harness.h"
+
 #define OTHER_SA 0x00U
-#define OUR_NAME 0x80A0000012345678ULL   /* arbitrary address capable */
 #define FIXED_NAME 0x00A0000012345678ULL /* not arbitrary address capable */
-#define START_US 1000000U
-
-static pfe_ecu_t g_ecu;
-static uint64_t g_now;
-static pfe_can_frame_t g_tx[PFE_ECU_TX_MAX];
-static uint32_t g_ntx;
-
-static pfe_ecu_config_t config(void)
-{
-    const pfe_ecu_config_t c = {
-        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
-        .name = OUR_NAME,
-        .save_interval_ms = 1000U,
-        .vehicle = &pfe_default_vehicle,
-        .env = &pfe_default_env,
-        .drag = &pfe_default_drag,
-        .default_vehicles = 1U,
-        .default_position = 0U,
-        .default_gap_mm = 10000U,
-        .cruise = &pfe_default_cruise,
-        .default_set_speed_mm_s = 25000,
-    };
-    return c;
-}
-
-static void start(const pfe_ecu_config_t *c)
-{
-    g_now = START_US;
-    memset(&g_ecu, 0xA5, sizeof g_ecu);
-    assert_int_equal(pfe_ecu_init(&g_ecu, c, NULL, -1, g_now), PFE_OK);
-}
 
 static void tick(void)
 {
@@ -70,21 +42,6 @@ static void start_claimed(const pfe_ecu_config_t *c)
     assert_int_equal(g_ecu.addr_state, PFE_ECU_ADDR_CLAIMED);
 }
 
-static void receive(const pfe_can_frame_t *f)
-{
-    pfe_ecu_receive(&g_ecu, f, g_now);
-}
-
-static const pfe_can_frame_t *sent(uint32_t pgn)
-{
-    for (uint32_t k = 0U; k < g_ntx; k++) {
-        if (pfe_j1939_pgn(g_tx[k].id) == pgn) {
-            return &g_tx[k];
-        }
-    }
-    return NULL;
-}
-
 static pfe_msg_platoon_config_t platoon_config(uint32_t n, uint32_t position, uint32_t gap_mm)
 {
     const pfe_msg_platoon_config_t m = {{n, PFE_SIG_VALID}, {position, PFE_SIG_VALID},
@@ -96,7 +53,7 @@ static pfe_msg_platoon_config_t platoon_config(uint32_t n, uint32_t position, ui
 static void send_platoon_config(const pfe_msg_platoon_config_t *m)
 {
     pfe_can_frame_t f;
-    assert_true(pfe_codec_encode_platoon_config(&f, m, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_platoon_config(&f, m, OTHER_SA), 0);
     receive(&f);
 }
 
@@ -159,15 +116,15 @@ static void test_rejects_and_counts_bad_frames(void **state)
 
     /* CCVS1, SSI, PFE_PlatoonConfig and a Request one byte short. */
     const pfe_msg_ccvs1_t speed = {{25000, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ccvs1(&f, &speed, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_ccvs1(&f, &speed, OTHER_SA), 0);
     f.dlc = 7U;
     receive(&f);
     const pfe_msg_ssi_t ssi = {{0, PFE_SIG_VALID}, {0, PFE_SIG_VALID}, {0U, PFE_SIG_VALID}};
-    assert_true(pfe_codec_encode_ssi(&f, &ssi, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_ssi(&f, &ssi, OTHER_SA), 0);
     f.dlc = 7U;
     receive(&f);
     const pfe_msg_platoon_config_t pc = platoon_config(2U, 1U, 10000U);
-    assert_true(pfe_codec_encode_platoon_config(&f, &pc, OTHER_SA) >= 0);
+    ASSERT_GE(pfe_codec_encode_platoon_config(&f, &pc, OTHER_SA), 0);
     f.dlc = 7U;
     receive(&f);
     assert_int_equal(pfe_codec_encode_request(&f, PFE_PGN_LFE1, PFE_J1939_ADDR_GLOBAL, OTHER_SA),

@@ -9,6 +9,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_accel.h"
 #include "pfe_calib.h"
 #include "pfe_estimator.h"
@@ -87,7 +89,7 @@ static void test_steady_flat_road_fuel_rate_and_total(void **state)
     pfe_estimator_t *est = estimator_of(1U, &pfe_default_drag);
     uint32_t valid = 0U;
     const pfe_est_output_t *out = run(est, 1000U, 25000, 0, &valid);
-    assert_true((out->flags & PFE_EST_VALID) != 0U);
+    assert_int_not_equal(out->flags & PFE_EST_VALID, 0U);
     assert_int_equal(out->flags, PFE_EST_VALID);
     assert_int_equal(out->speed_mm_s, 25000);
     assert_int_equal(out->accel_um_s2, 0);
@@ -99,9 +101,9 @@ static void test_steady_flat_road_fuel_rate_and_total(void **state)
     assert_int_equal(valid, 960);
     /* 960 ticks of 10 ms at rate r nL/s: r * 9.6 nL = r * 0.0096 uL */
     const uint64_t expect_ul = ((uint64_t)out->fuel_rate_nl_s * 96U) / 10000U;
-    assert_true(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON) == expect_ul);
-    assert_true(pfe_estimator_fuel_used_ul(est, 0) == expect_ul);
-    assert_true(pfe_estimator_fuel_used_ul(est, 1) == 0U);
+    assert_int_equal(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON), expect_ul);
+    assert_int_equal(pfe_estimator_fuel_used_ul(est, 0), expect_ul);
+    assert_int_equal(pfe_estimator_fuel_used_ul(est, 1), 0U);
 }
 
 static void test_coasting_downhill_burns_nothing(void **state)
@@ -109,13 +111,13 @@ static void test_coasting_downhill_burns_nothing(void **state)
     (void)state;
     pfe_estimator_t *est = estimator_of(5U, &pfe_default_drag);
     const pfe_est_output_t *out = run(est, 500U, 25000, -60000, NULL);
-    assert_true((out->flags & PFE_EST_VALID) != 0U);
+    assert_int_not_equal(out->flags & PFE_EST_VALID, 0U);
     assert_int_equal(out->fuel_rate_nl_s, 0);
     for (uint32_t i = 0U; i < 5U; i++) {
         assert_int_equal(out->pos_fuel_rate_nl_s[i], 0);
-        assert_true(pfe_estimator_fuel_used_ul(est, (int32_t)i) == 0U);
+        assert_int_equal(pfe_estimator_fuel_used_ul(est, (int32_t)i), 0U);
     }
-    assert_true(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON) == 0U);
+    assert_int_equal(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON), 0U);
 }
 
 static void test_identical_trucks_without_slipstream(void **state)
@@ -131,7 +133,7 @@ static void test_identical_trucks_without_slipstream(void **state)
     }
     /* Each position is one truck, exactly; the platoon object is the small-angle
      * model, which differs from cos/sin at 1.5 % grade by under 0.02 %. */
-    assert_true(sum == 5U * (uint64_t)out->pos_fuel_rate_nl_s[0]);
+    assert_int_equal(sum, 5U * (uint64_t)out->pos_fuel_rate_nl_s[0]);
     assert_in_range(out->fuel_rate_nl_s, 5U * one - 5U, 5U * one + 5U);
     assert_in_range(sum, (5U * (uint64_t)one * 9998U) / 10000U, (5U * (uint64_t)one * 10002U) / 10000U);
 }
@@ -142,7 +144,7 @@ static void test_missing_and_stale_inputs(void **state)
     pfe_estimator_t *est = estimator_of(2U, &pfe_default_drag);
     (void)run(est, 100U, 25000, 0, NULL);
     const uint64_t before = pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON);
-    assert_true(before > 0U);
+    ASSERT_GT(before, 0U);
 
     /* Speed not valid: not available, nothing accumulates. */
     pfe_est_input_t in = {25000, false, true, 0, true};
@@ -150,13 +152,13 @@ static void test_missing_and_stale_inputs(void **state)
     assert_int_equal(out->flags, PFE_EST_SPEED_MISSING);
     assert_int_equal(out->fuel_rate_nl_s, 0);
     assert_int_equal(out->pos_fuel_rate_nl_s[1], 0);
-    assert_true(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON) == before);
+    assert_int_equal(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON), before);
 
     /* Grade not valid. */
     in = (pfe_est_input_t){25000, true, true, 0, false};
     out = pfe_estimator_step(est, &in);
-    assert_true((out->flags & PFE_EST_GRADE_MISSING) != 0U);
-    assert_true((out->flags & PFE_EST_VALID) == 0U);
+    assert_int_not_equal(out->flags & PFE_EST_GRADE_MISSING, 0U);
+    assert_int_equal(out->flags & PFE_EST_VALID, 0U);
 
     /* No input at all. */
     out = pfe_estimator_step(est, NULL);
@@ -173,8 +175,8 @@ static void test_missing_and_stale_inputs(void **state)
     for (uint32_t k = 0U; k < 31U; k++) {
         out = pfe_estimator_step(est, &in);
     }
-    assert_true((out->flags & PFE_EST_SPEED_MISSING) != 0U);
-    assert_true((out->flags & PFE_EST_VALID) == 0U);
+    assert_int_not_equal(out->flags & PFE_EST_SPEED_MISSING, 0U);
+    assert_int_equal(out->flags & PFE_EST_VALID, 0U);
 }
 
 static void test_out_of_range_inputs_clamp_and_say_so(void **state)
@@ -183,11 +185,11 @@ static void test_out_of_range_inputs_clamp_and_say_so(void **state)
     pfe_estimator_t *est = estimator_of(1U, &pfe_default_drag);
     const pfe_est_output_t *out = run(est, 100U, 25000, 600000, NULL);
     assert_int_equal(out->grade_ppm, 500000);
-    assert_true((out->flags & PFE_EST_GRADE_CLAMPED) != 0U);
+    assert_int_not_equal(out->flags & PFE_EST_GRADE_CLAMPED, 0U);
     est = estimator_of(1U, &pfe_default_drag);
     out = run(est, 100U, 80000, 0, NULL);
     assert_int_equal(out->speed_mm_s, PFE_SPEED_MAX_MM_S);
-    assert_true((out->flags & PFE_EST_SPEED_CLAMPED) != 0U);
+    assert_int_not_equal(out->flags & PFE_EST_SPEED_CLAMPED, 0U);
 }
 
 static void test_fuel_used_holds_a_trucks_lifetime(void **state)
@@ -201,14 +203,14 @@ static void test_fuel_used_holds_a_trucks_lifetime(void **state)
     }
     assert_int_equal(pfe_estimator_set_fuel_used_ul(est, 32, 0U), PFE_EINVAL);
     const pfe_est_output_t *out = run(est, 200U, 25000, 20000, NULL);
-    assert_true((out->flags & PFE_EST_SATURATED) == 0U);
-    assert_true(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON) > 2000000000000ULL);
-    assert_true(pfe_estimator_fuel_used_ul(est, 31) > 2000000000000ULL);
+    assert_int_equal(out->flags & PFE_EST_SATURATED, 0U);
+    ASSERT_GT(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON), 2000000000000ULL);
+    ASSERT_GT(pfe_estimator_fuel_used_ul(est, 31), 2000000000000ULL);
     /* At the very top it saturates and says so, never wraps. */
     assert_int_equal(pfe_estimator_set_fuel_used_ul(est, PFE_EST_PLATOON, UINT64_MAX), PFE_OK);
     out = run(est, 20U, 25000, 20000, NULL);
-    assert_true((out->flags & PFE_EST_SATURATED) != 0U);
-    assert_true(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON) == UINT64_MAX / 100000U);
+    assert_int_not_equal(out->flags & PFE_EST_SATURATED, 0U);
+    assert_int_equal(pfe_estimator_fuel_used_ul(est, PFE_EST_PLATOON), UINT64_MAX / 100000U);
 }
 
 /* Fuel used is read out in uL through a division by 100000 that the
@@ -218,31 +220,31 @@ static void test_udiv_u64_exact(void **state)
     (void)state;
     uint64_t r = 1U;
     /* 2^64 - 1 = 18446744073709551615 */
-    assert_true(pfe_udiv_u64(UINT64_MAX, 1000U, &r) == 18446744073709551ULL);
-    assert_true(r == 615U);
+    assert_int_equal(pfe_udiv_u64(UINT64_MAX, 1000U, &r), 18446744073709551ULL);
+    assert_int_equal(r, 615U);
     /* 2^64 - 1 = (2^16 - 1)(2^48 + 2^32 + 2^16 + 1) */
-    assert_true(pfe_udiv_u64(UINT64_MAX, 0xFFFFU, &r) == 281479271743489ULL);
-    assert_true(r == 0U);
+    assert_int_equal(pfe_udiv_u64(UINT64_MAX, 0xFFFFU, &r), 281479271743489ULL);
+    assert_int_equal(r, 0U);
     /* above the 32-bit path: 2^16 */
-    assert_true(pfe_udiv_u64(UINT64_MAX, 0x10000U, &r) == 281474976710655ULL);
-    assert_true(r == 65535U);
-    assert_true(pfe_udiv_u64(12345678901234567890ULL, 7U, &r) == 1763668414462081127ULL);
-    assert_true(r == 1U);
-    assert_true(pfe_udiv_u64(12345678901234567890ULL, 65521U, &r) == 188423236843677ULL);
-    assert_true(r == 7173U);
-    assert_true(pfe_udiv_u64(12345678901234567890ULL, 100000U, &r) == 123456789012345ULL);
-    assert_true(r == 67890U);
-    assert_true(pfe_udiv_u64(12345678901234567890ULL, 1U, NULL) == 12345678901234567890ULL);
-    assert_true(pfe_udiv_u64(99U, 100U, &r) == 0U);
-    assert_true(r == 99U);
+    assert_int_equal(pfe_udiv_u64(UINT64_MAX, 0x10000U, &r), 281474976710655ULL);
+    assert_int_equal(r, 65535U);
+    assert_int_equal(pfe_udiv_u64(12345678901234567890ULL, 7U, &r), 1763668414462081127ULL);
+    assert_int_equal(r, 1U);
+    assert_int_equal(pfe_udiv_u64(12345678901234567890ULL, 65521U, &r), 188423236843677ULL);
+    assert_int_equal(r, 7173U);
+    assert_int_equal(pfe_udiv_u64(12345678901234567890ULL, 100000U, &r), 123456789012345ULL);
+    assert_int_equal(r, 67890U);
+    assert_int_equal(pfe_udiv_u64(12345678901234567890ULL, 1U, NULL), 12345678901234567890ULL);
+    assert_int_equal(pfe_udiv_u64(99U, 100U, &r), 0U);
+    assert_int_equal(r, 99U);
     r = 1U;
-    assert_true(pfe_udiv_u64(5U, 0U, &r) == 0U); /* by contract */
-    assert_true(r == 0U);
+    assert_int_equal(pfe_udiv_u64(5U, 0U, &r), 0U); /* by contract */
+    assert_int_equal(r, 0U);
     /* rounded: halves up */
-    assert_true(pfe_udiv_round_u64(2499U, 1000U) == 2U);
-    assert_true(pfe_udiv_round_u64(2500U, 1000U) == 3U);
-    assert_true(pfe_udiv_round_u64(UINT64_MAX, 2U) == 9223372036854775808ULL);
-    assert_true(pfe_udiv_round_u64(UINT64_MAX, 0U) == 0U);
+    assert_int_equal(pfe_udiv_round_u64(2499U, 1000U), 2U);
+    assert_int_equal(pfe_udiv_round_u64(2500U, 1000U), 3U);
+    assert_int_equal(pfe_udiv_round_u64(UINT64_MAX, 2U), 9223372036854775808ULL);
+    assert_int_equal(pfe_udiv_round_u64(UINT64_MAX, 0U), 0U);
     /* against the compiler's 64-bit division, divisors both sides of 2^16 */
     uint64_t x = 0x9E3779B97F4A7C15ULL;
     for (uint32_t k = 0U; k < 20000U; k++) {
@@ -251,15 +253,15 @@ static void test_udiv_u64_exact(void **state)
         x ^= x << 17;
         const uint64_t num = x >> (k % 40U);
         const uint64_t den = 1U + ((x >> 40) % 0x1FFFFU);
-        assert_true(pfe_udiv_u64(num, den, &r) == (num / den));
-        assert_true(r == (num % den));
+        assert_int_equal(pfe_udiv_u64(num, den, &r), num / den);
+        assert_int_equal(r, num % den);
     }
     /* fuel used reads back what was set, up to the largest value it holds */
     pfe_estimator_t *est = estimator_of(2U, &pfe_default_drag);
     static const uint64_t ul[] = {0U, 1U, 99999U, 100000U, 123456789012345ULL, 184467440737095ULL};
     for (uint32_t k = 0U; k < sizeof ul / sizeof ul[0]; k++) {
         assert_int_equal(pfe_estimator_set_fuel_used_ul(est, 1, ul[k]), PFE_OK);
-        assert_true(pfe_estimator_fuel_used_ul(est, 1) == ul[k]);
+        assert_int_equal(pfe_estimator_fuel_used_ul(est, 1), ul[k]);
     }
 }
 

@@ -6,6 +6,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_fixed.h"
 
@@ -15,11 +17,11 @@ static void test_saturation_limits(void **state)
     assert_int_equal(pfe_sat_i32((int64_t)INT32_MAX + 1), INT32_MAX);
     assert_int_equal(pfe_sat_i32((int64_t)INT32_MIN - 1), INT32_MIN);
     assert_int_equal(pfe_sat_i32(-12345), -12345);
-    assert_true(pfe_sat_add_i64(INT64_MAX, 1) == INT64_MAX);
-    assert_true(pfe_sat_add_i64(INT64_MIN, -1) == INT64_MIN);
-    assert_true(pfe_sat_add_i64(-5, 3) == -2);
-    assert_true(pfe_sat_add_u64(UINT64_MAX - 1U, 5U) == UINT64_MAX);
-    assert_true(pfe_sat_add_u64(7U, 5U) == 12U);
+    assert_int_equal(pfe_sat_add_i64(INT64_MAX, 1), INT64_MAX);
+    assert_int_equal(pfe_sat_add_i64(INT64_MIN, -1), INT64_MIN);
+    assert_int_equal(pfe_sat_add_i64(-5, 3), -2);
+    assert_int_equal(pfe_sat_add_u64(UINT64_MAX - 1U, 5U), UINT64_MAX);
+    assert_int_equal(pfe_sat_add_u64(7U, 5U), 12U);
     assert_int_equal(pfe_clamp_i32(5, 10, 20), 10);
     assert_int_equal(pfe_clamp_i32(25, 10, 20), 20);
 }
@@ -28,16 +30,16 @@ static void test_rounding_shift_is_to_nearest_for_both_signs(void **state)
 {
     (void)state;
     /* Pins arithmetic right shift of negative values (pfe_fixed.h). */
-    assert_true(pfe_rshift_round(5, 1U) == 3);    /* 2.5 -> 3 */
-    assert_true(pfe_rshift_round(-5, 1U) == -2);  /* -2.5 -> -2 (halves up) */
-    assert_true(pfe_rshift_round(-7, 2U) == -2);  /* -1.75 -> -2 */
-    assert_true(pfe_rshift_round(-6, 2U) == -1);  /* -1.5 -> -1 */
-    assert_true(pfe_rshift_round(((int64_t)1 << 40) + ((int64_t)1 << 31), 32U) == 257);
-    assert_true(pfe_mul_q(3, -3, 2U) == -2);      /* -9/4 = -2.25 */
-    assert_true(pfe_udiv_round_u64(7U, 2U) == 4U);
-    assert_true(pfe_udiv_round_u64(10U, 4U) == 3U);
-    assert_true(pfe_udiv_round_u64(9U, 4U) == 2U);
-    assert_true(pfe_udiv_round_u64(9U, 0U) == 0U);
+    assert_int_equal(pfe_rshift_round(5, 1U), 3);    /* 2.5 -> 3 */
+    assert_int_equal(pfe_rshift_round(-5, 1U), -2);  /* -2.5 -> -2 (halves up) */
+    assert_int_equal(pfe_rshift_round(-7, 2U), -2);  /* -1.75 -> -2 */
+    assert_int_equal(pfe_rshift_round(-6, 2U), -1);  /* -1.5 -> -1 */
+    assert_int_equal(pfe_rshift_round(((int64_t)1 << 40) + ((int64_t)1 << 31), 32U), 257);
+    assert_int_equal(pfe_mul_q(3, -3, 2U), -2);      /* -9/4 = -2.25 */
+    assert_int_equal(pfe_udiv_round_u64(7U, 2U), 4U);
+    assert_int_equal(pfe_udiv_round_u64(10U, 4U), 3U);
+    assert_int_equal(pfe_udiv_round_u64(9U, 4U), 2U);
+    assert_int_equal(pfe_udiv_round_u64(9U, 0U), 0U);
 }
 
 static void test_drag_reduction_table(void **state)

@@ -12,6 +12,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_fixed.h"
 #include "pfe_identify.h"
@@ -501,7 +503,7 @@ static void test_garbage_stays_in_bounds(void **state)
         assert_in_range(pfe_identify_mass_kg(id), PFE_MASS_MIN_KG, PFE_MASS_MAX_KG);
         assert_in_range(pfe_identify_aux_power_w(id), 0, PFE_ID_AUX_MAX_W);
     }
-    assert_true(pfe_identify_counters(id)->samples_used > 0U);
+    ASSERT_GT(pfe_identify_counters(id)->samples_used, 0U);
 
     /* Fuel far above the model whenever the speed rises: an enormous mass. */
     id = fresh();
@@ -630,7 +632,7 @@ static void test_steep_grades_exact(void **state)
     (void)state;
     pfe_identify_t *id = fresh();
     steep_grades(id, 25000.0, 12000U, -1.0);
-    assert_true(id->sxx > (int64_t)UINT32_MAX); /* internals: the path exercised */
+    ASSERT_GT(id->sxx, (int64_t)UINT32_MAX);    /* internals: the path exercised */
     const int64_t e = err_bp(pfe_identify_mass_kg(id), 25000.0);
     print_message("steep grades, no noise: %u kg for 25 t (%+.2f %%), aux %u W\n",
                   (unsigned)pfe_identify_mass_kg(id), (double)e / 100.0,
@@ -650,7 +652,7 @@ static void test_outlier_window_is_skipped(void **state)
     steep_grades(id, 25000.0, 6000U, -1.0);
     const uint32_t m = pfe_identify_mass_kg(id);
     const uint32_t rejected = pfe_identify_counters(id)->windows_rejected;
-    assert_true(pfe_identify_counters(id)->mass_updates >= PFE_ID_OUTLIER_AFTER);
+    ASSERT_GE(pfe_identify_counters(id)->mass_updates, PFE_ID_OUTLIER_AFTER);
     /* The same drive again from its start: the spike falls at the first
      * grade step's window, where dx is large. */
     pfe_identify_t again = *id;
@@ -660,7 +662,7 @@ static void test_outlier_window_is_skipped(void **state)
     assert_int_equal(pfe_identify_counters(&spiked)->windows_rejected,
                      pfe_identify_counters(&again)->windows_rejected + 1U);
     assert_signed_range((int64_t)pfe_identify_mass_kg(&spiked) - (int64_t)m, -100, 100);
-    assert_true(pfe_identify_counters(id)->windows_rejected == rejected);
+    assert_int_equal(pfe_identify_counters(id)->windows_rejected, rejected);
 }
 
 /* A state corrupted in memory (Sxx negative): the next mass update resets
@@ -671,7 +673,7 @@ static void test_corrupted_information_resets(void **state)
     (void)state;
     pfe_identify_t *id = fresh();
     steep_grades(id, 25000.0, 2400U, -1.0);
-    assert_true(id->n_mass > 0U);
+    ASSERT_GT(id->n_mass, 0U);
     const uint32_t m = pfe_identify_mass_kg(id);
     id->sxx = -1;
     steep_grades(id, 25000.0, 405U, -1.0); /* up to the next grade step's window */
@@ -680,7 +682,7 @@ static void test_corrupted_information_resets(void **state)
     assert_int_equal(pfe_identify_mass_kg(id), m);
     /* A mean far outside the windows' bounds: the same, no overflow. */
     steep_grades(id, 25000.0, 2400U, -1.0);
-    assert_true(id->n_mass > 0U);
+    ASSERT_GT(id->n_mass, 0U);
     id->mean_x_q4 = INT64_MAX / 2;
     steep_grades(id, 25000.0, 405U, -1.0);
     assert_int_equal(id->n_mass, 0);

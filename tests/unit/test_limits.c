@@ -21,6 +21,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_can.h"
 #include "pfe_codec.h"
@@ -83,7 +85,7 @@ static const pfe_est_output_t *estimate(uint32_t n, const pfe_vehicle_calib_t *v
     assert_int_equal(pfe_estimator_init(&g_est, &g_platoon), PFE_OK);
     /* 1 s: past the filter's warm-up, at a constant speed (a = 0). */
     const pfe_est_output_t *out = run_estimator(100U, speed_mm_s, grade_ppm);
-    assert_true((out->flags & PFE_EST_VALID) != 0U);
+    assert_int_not_equal(out->flags & PFE_EST_VALID, 0U);
     assert_int_equal(out->accel_um_s2, 0);
     return out;
 }
@@ -133,8 +135,8 @@ static void test_mass_range_is_1_t_to_100_t(void **state)
     pfe_vehicle_t v;
     memset(&v, 0xA5, sizeof v);
     assert_int_equal(pfe_vehicle_init(&v, &k_light, &pfe_default_env, 0U), PFE_OK);
-    assert_true(v.mass_q32 == 4294967);
-    assert_true(v.mass_fuel_q32 == 4423816);
+    assert_int_equal(v.mass_q32, 4294967);
+    assert_int_equal(v.mass_fuel_q32, 4423816);
     pfe_grade_accel_t flat;
     pfe_grade_accel(0, pfe_default_env.gravity_um_s2, &flat);
     /* Standing, at the filter's largest acceleration (20 m/s^2):
@@ -146,8 +148,8 @@ static void test_mass_range_is_1_t_to_100_t(void **state)
 
     memset(&v, 0xA5, sizeof v);
     assert_int_equal(pfe_vehicle_init(&v, &k_heavy, &pfe_default_env, 0U), PFE_OK);
-    assert_true(v.mass_q32 == 429496730);
-    assert_true(v.mass_fuel_q32 == 442381631);
+    assert_int_equal(v.mass_q32, 429496730);
+    assert_int_equal(v.mass_fuel_q32, 442381631);
     /* Every term at once: 70 m/s, 20 m/s^2, +50 % (sin 0.4472136, cos
      * 0.8944272): air 0.5 * 1.29 * 20 * 70^2 = 63210 N, inertia 103000 * 20
      * = 2060000 N, grade 100000 * 9.81 * 0.4472136 = 438716.5 N, rolling
@@ -174,7 +176,7 @@ static void test_speed_zero_and_maximum(void **state)
     assert_int_equal(out->speed_mm_s, 0);
     assert_int_equal(out->wheel_force_n, 2747);
     assert_in_range(out->fuel_rate_nl_s, 279330 - 3, 279330 + 3);
-    assert_true((out->flags & (PFE_EST_SPEED_CLAMPED | PFE_EST_SATURATED)) == 0U);
+    assert_int_equal(out->flags & (PFE_EST_SPEED_CLAMPED | PFE_EST_SATURATED), 0U);
 
     /* 70 m/s (PFE_SPEED_MAX_MM_S): air 0.5 * 1.29 * 6 * 4900 = 18963 N plus
      * 2746.8 N; (21709.8 N * 70 m/s + 4 kW) / 14320 J/mL = 106402654 nL/s;
@@ -184,23 +186,23 @@ static void test_speed_zero_and_maximum(void **state)
     assert_int_equal(out->speed_mm_s, PFE_SPEED_MAX_MM_S);
     assert_int_equal(out->wheel_force_n, 21710);
     assert_in_range(out->fuel_rate_nl_s, 106402654 - 3508, 106402654 + 3508);
-    assert_true((out->flags & PFE_EST_SPEED_CLAMPED) == 0U);
+    assert_int_equal(out->flags & PFE_EST_SPEED_CLAMPED, 0U);
     /* One mm/s more is clamped, and flagged. */
     out = run_estimator(20U, PFE_SPEED_MAX_MM_S + 1, 0);
     assert_int_equal(out->speed_mm_s, PFE_SPEED_MAX_MM_S);
-    assert_true((out->flags & PFE_EST_SPEED_CLAMPED) != 0U);
+    assert_int_not_equal(out->flags & PFE_EST_SPEED_CLAMPED, 0U);
 
     /* CCVS1's largest valid raw speed, 0xFAFF / 256 km/h = 250.996 km/h =
      * 69721.1 mm/s, is inside the model's range; 0xFB00 is out of range and
      * decodes to no value. */
     pfe_can_frame_t f = {0x98FEF100UL, 8U, {0xFF, 0xFF, 0xFA, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF}};
     pfe_msg_ccvs1_t m;
-    assert_true(pfe_codec_decode_ccvs1(&f, &m) >= 0);
+    ASSERT_GE(pfe_codec_decode_ccvs1(&f, &m), 0);
     assert_int_equal(m.speed_mm_s.state, PFE_SIG_VALID);
     assert_int_equal(m.speed_mm_s.value, 69721);
     f.data[1] = 0x00U;
     f.data[2] = 0xFBU;
-    assert_true(pfe_codec_decode_ccvs1(&f, &m) >= 0);
+    ASSERT_GE(pfe_codec_decode_ccvs1(&f, &m), 0);
     assert_int_equal(m.speed_mm_s.state, PFE_SIG_OUT_OF_RANGE);
     assert_int_equal(m.speed_mm_s.value, 0);
 }
@@ -221,13 +223,13 @@ static void test_grade_30_percent_both_ways(void **state)
     assert_int_equal(out->wheel_force_n, 122886);
     assert_in_range(out->fuel_rate_nl_s, 214814159 - 2148, 214814159 + 2148);
     assert_in_range(out->pos_fuel_rate_nl_s[0], 205944514 - 2059, 205944514 + 2059);
-    assert_true((out->flags & (PFE_EST_GRADE_CLAMPED | PFE_EST_SATURATED)) == 0U);
+    assert_int_equal(out->flags & (PFE_EST_GRADE_CLAMPED | PFE_EST_SATURATED), 0U);
     /* -30 %: gravity pulls harder than anything resists: fuel cut. */
     out = estimate(1U, &pfe_default_vehicle, &pfe_no_drag_reduction, 25000, -300000);
-    assert_true(out->wheel_force_n < 0);
+    ASSERT_LT(out->wheel_force_n, 0);
     assert_int_equal(out->fuel_rate_nl_s, 0);
     assert_int_equal(out->pos_fuel_rate_nl_s[0], 0);
-    assert_true((out->flags & PFE_EST_VALID) != 0U);
+    assert_int_not_equal(out->flags & PFE_EST_VALID, 0U);
 }
 
 static void test_grade_codec_extremes(void **state)
@@ -243,14 +245,14 @@ static void test_grade_codec_extremes(void **state)
      * 26.565 deg (50 %) the grade saturates and says so. */
     pfe_can_frame_t f = {0x8CF01300UL, 8U, {0x00, 0x00, 0x00, 0x7D, 0xFF, 0xFF, 0xFC, 0xFF}};
     pfe_msg_ssi_t m;
-    assert_true(pfe_codec_decode_ssi(&f, &m) >= 0);
+    ASSERT_GE(pfe_codec_decode_ssi(&f, &m), 0);
     assert_int_equal(m.pitch_udeg.state, PFE_SIG_VALID);
     assert_int_equal(m.pitch_udeg.value, -64000000);
     assert_int_equal(pfe_codec_grade_ppm_from_pitch(m.pitch_udeg.value, &sat), -PFE_GRADE_MAX_PPM);
     assert_true(sat);
     f.data[0] = 0xFFU;
     f.data[1] = 0xFAU;
-    assert_true(pfe_codec_decode_ssi(&f, &m) >= 0);
+    ASSERT_GE(pfe_codec_decode_ssi(&f, &m), 0);
     assert_int_equal(m.pitch_udeg.value, 64510000);
     assert_int_equal(pfe_codec_grade_ppm_from_pitch(m.pitch_udeg.value, &sat), PFE_GRADE_MAX_PPM);
     assert_true(sat);
@@ -270,7 +272,7 @@ static void test_grade_codec_extremes(void **state)
     /* One step beyond is clamped, and the encoder says which signals. */
     p.grade_ppm[0].value = -640020;
     p.grade_ppm[1].value = 645120;
-    assert_true(pfe_codec_encode_grade_preview(&f, &p, 0x33U) > 0);
+    ASSERT_GT(pfe_codec_encode_grade_preview(&f, &p, 0x33U), 0);
 }
 
 /* ------------------------------------------------------------ the largest platoon */
@@ -307,12 +309,12 @@ static void test_largest_platoon_of_heaviest_trucks(void **state)
     for (uint32_t i = 0U; i < PFE_MAX_VEHICLES; i++) {
         assert_int_equal(out->pos_fuel_rate_nl_s[i], UINT32_MAX);
     }
-    assert_true((out->flags & PFE_EST_SATURATED) != 0U);
+    assert_int_not_equal(out->flags & PFE_EST_SATURATED, 0U);
     /* The totals take UINT32_MAX * 10 pL a tick: 60 valid ticks of the 100
      * (the first 40 warm the filter up: 5 samples 100 ms apart) are 60 *
      * 4294967295 * 10 pL = 2576980.377 uL. */
-    assert_true(pfe_estimator_fuel_used_ul(&g_est, PFE_EST_PLATOON) == 2576980U);
-    assert_true(pfe_estimator_fuel_used_ul(&g_est, 31) == 2576980U);
+    assert_int_equal(pfe_estimator_fuel_used_ul(&g_est, PFE_EST_PLATOON), 2576980U);
+    assert_int_equal(pfe_estimator_fuel_used_ul(&g_est, 31), 2576980U);
 }
 
 /* ------------------------------------------------------------ power limit */
@@ -356,18 +358,18 @@ static void test_fuel_used_near_its_maximum(void **state)
     assert_int_equal(pfe_estimator_set_fuel_used_ul(&g_est, PFE_EST_PLATOON, ESTIMATOR_MAX_UL - 1U), PFE_OK);
     assert_int_equal(pfe_estimator_set_fuel_used_ul(&g_est, 0, ESTIMATOR_MAX_UL - 1U), PFE_OK);
     const pfe_est_output_t *out = run_estimator(4U * 10U, 25000, 0);
-    assert_true((out->flags & PFE_EST_SATURATED) == 0U); /* warming up: nothing added */
+    assert_int_equal(out->flags & PFE_EST_SATURATED, 0U); /* warming up: nothing added */
     out = run_estimator(10U, 25000, 0);
-    assert_true((out->flags & PFE_EST_SATURATED) != 0U);
-    assert_true(pfe_estimator_fuel_used_ul(&g_est, PFE_EST_PLATOON) == ESTIMATOR_MAX_UL);
-    assert_true(pfe_estimator_fuel_used_ul(&g_est, 0) == ESTIMATOR_MAX_UL);
+    assert_int_not_equal(out->flags & PFE_EST_SATURATED, 0U);
+    assert_int_equal(pfe_estimator_fuel_used_ul(&g_est, PFE_EST_PLATOON), ESTIMATOR_MAX_UL);
+    assert_int_equal(pfe_estimator_fuel_used_ul(&g_est, 0), ESTIMATOR_MAX_UL);
     out = run_estimator(100U, 25000, 0);
-    assert_true((out->flags & PFE_EST_SATURATED) != 0U);
-    assert_true(pfe_estimator_fuel_used_ul(&g_est, PFE_EST_PLATOON) == ESTIMATOR_MAX_UL);
+    assert_int_not_equal(out->flags & PFE_EST_SATURATED, 0U);
+    assert_int_equal(pfe_estimator_fuel_used_ul(&g_est, PFE_EST_PLATOON), ESTIMATOR_MAX_UL);
     /* A restored total beyond what the estimator holds reads back as its
      * largest, never wrapped. */
     assert_int_equal(pfe_estimator_set_fuel_used_ul(&g_est, 0, UINT64_MAX), PFE_OK);
-    assert_true(pfe_estimator_fuel_used_ul(&g_est, 0) == ESTIMATOR_MAX_UL);
+    assert_int_equal(pfe_estimator_fuel_used_ul(&g_est, 0), ESTIMATOR_MAX_UL);
 }
 
 static void test_codec_limits_of_every_output(void **state)
@@ -381,8 +383,8 @@ static void test_codec_limits_of_every_output(void **state)
     pf.fuel_used_ul.value = TOTAL_MAX_UL + 500U;
     assert_int_equal(pfe_codec_encode_platoon_fuel(&f, &pf, 0x8CU), 2);
     pfe_msg_platoon_fuel_t back;
-    assert_true(pfe_codec_decode_platoon_fuel(&f, &back) >= 0);
-    assert_true(back.fuel_used_ul.value == TOTAL_MAX_UL);
+    ASSERT_GE(pfe_codec_decode_platoon_fuel(&f, &back), 0);
+    assert_int_equal(back.fuel_used_ul.value, TOTAL_MAX_UL);
     pfe_msg_hrlfc_t h = {{0U, PFE_SIG_NOT_AVAILABLE}, {TOTAL_MAX_UL + 499U, PFE_SIG_VALID}};
     assert_int_equal(pfe_codec_encode_hrlfc(&f, &h, 0x8CU), 0);
     h.total_fuel_ul.value = UINT64_MAX;
@@ -473,7 +475,7 @@ static pfe_msg_status_t next_status(uint16_t speed_raw, uint16_t pitch_raw)
         ecu_tick(speed_raw, pitch_raw);
         const pfe_can_frame_t *f = sent(PFE_PGN_STATUS);
         if (f != NULL) {
-            assert_true(pfe_codec_decode_status(f, &m) >= 0);
+            ASSERT_GE(pfe_codec_decode_status(f, &m), 0);
             return m;
         }
     }
@@ -522,9 +524,9 @@ static void test_ecu_status_says_output_clamped(void **state)
         const pfe_can_frame_t *f = sent(PFE_PGN_HRLFC);
         if (f != NULL) {
             pfe_msg_hrlfc_t d;
-            assert_true(pfe_codec_decode_hrlfc(f, &d) >= 0);
+            ASSERT_GE(pfe_codec_decode_hrlfc(f, &d), 0);
             assert_int_equal(d.total_fuel_ul.state, PFE_SIG_VALID);
-            assert_true(d.total_fuel_ul.value == TOTAL_MAX_UL);
+            assert_int_equal(d.total_fuel_ul.value, TOTAL_MAX_UL);
             hrlfc = true;
         }
     }
@@ -541,7 +543,7 @@ static void test_ecu_status_says_output_clamped(void **state)
     }
     assert_int_equal(m.mode.value, PFE_MODE_DEGRADED);
     assert_int_equal(m.output_saturated.value, 1U);
-    assert_true(pfe_ecu_own_fuel_ul(&g_ecu) == ESTIMATOR_MAX_UL);
+    assert_int_equal(pfe_ecu_own_fuel_ul(&g_ecu), ESTIMATOR_MAX_UL);
 }
 
 /* The largest platoon, the own truck last, then a platoon of one: the own
@@ -574,8 +576,8 @@ static void test_ecu_total_survives_the_largest_platoon_shrinking(void **state)
     g_ntx = pfe_ecu_tick(&g_ecu, g_now, g_tx, PFE_ECU_TX_MAX);
     assert_int_equal(g_ecu.platoon.n_vehicles, 1U);
     assert_int_equal(g_ecu.own_position, 0U);
-    assert_true(pfe_ecu_own_fuel_ul(&g_ecu) == own_before);
-    assert_true(pfe_ecu_platoon_fuel_ul(&g_ecu) == platoon_before);
+    assert_int_equal(pfe_ecu_own_fuel_ul(&g_ecu), own_before);
+    assert_int_equal(pfe_ecu_platoon_fuel_ul(&g_ecu), platoon_before);
     assert_in_range(platoon_before - platoon, 0U, 3000U);
 }
 
@@ -615,7 +617,7 @@ static void test_simulation_at_the_extremes(void **state)
                                   PFE_SPEED_MAX_MM_S, PFE_SIM_STEP_MAX_MM),
                      PFE_OK);
     assert_int_equal(sim_to_end(&sim, &road, &vmax), PFE_SIM_DONE);
-    assert_true(vmax <= PFE_SPEED_MAX_MM_S);
+    ASSERT_LE(vmax, PFE_SPEED_MAX_MM_S);
     assert_in_range(pfe_sim_speed_mm_s(&sim), 19424 - 20, 19424 + 20);
     /* At full power: (64 MW + 3.2 MW) / (0.05 * 35800 J/mL) = 37541.9 mL/s
      * over 50 km at 19.42 m/s (2574 s), less the start: about 96.6 kL. */
@@ -669,7 +671,7 @@ static void test_simulation_at_the_extremes(void **state)
     assert_int_equal(sim_to_end(&sim, &road, &vmax), PFE_SIM_DONE);
     assert_int_equal(vmax, PFE_SPEED_MAX_MM_S);
     assert_int_equal(pfe_sim_speed_mm_s(&sim), PFE_SPEED_MAX_MM_S);
-    assert_true(sim.fuel_nl == 0U);
+    assert_int_equal(sim.fuel_nl, 0U);
 
     /* The heavy truck on -30 %: 294300 N of gravity, 1 MN of brake: it
      * holds 25 m/s, burning nothing. */
@@ -679,7 +681,7 @@ static void test_simulation_at_the_extremes(void **state)
                      PFE_OK);
     assert_int_equal(sim_to_end(&sim, &road, &vmax), PFE_SIM_DONE);
     assert_in_range(pfe_sim_speed_mm_s(&sim), 24900, 25100);
-    assert_true(sim.fuel_nl == 0U);
+    assert_int_equal(sim.fuel_nl, 0U);
 }
 
 /* ------------------------------------------------------------ predictor */
@@ -694,7 +696,7 @@ static void send_preview(int32_t grade_ppm, uint32_t n, uint32_t spacing_m)
     m.sample_count.value = n;
     m.spacing_m.value = spacing_m;
     assert_int_equal(pfe_codec_encode_grade_preview(&f, &m, 0x33U), 0);
-    assert_true(pfe_preview_push(&g_pv, &f) >= 0);
+    ASSERT_GE(pfe_preview_push(&g_pv, &f), 0);
     for (uint32_t k = 0U; k < n; k += PFE_PREVIEW_SAMPLES_PER_FRAME) {
         memset(&m, 0, sizeof m);
         m.frame_type.value = PFE_PREVIEW_FRAME_DATA;
@@ -704,7 +706,7 @@ static void send_preview(int32_t grade_ppm, uint32_t n, uint32_t spacing_m)
             m.grade_ppm[j].state = ((k + j) < n) ? PFE_SIG_VALID : PFE_SIG_NOT_AVAILABLE;
         }
         assert_int_equal(pfe_codec_encode_grade_preview(&f, &m, 0x33U), 0);
-        assert_true(pfe_preview_push(&g_pv, &f) >= 0);
+        ASSERT_GE(pfe_preview_push(&g_pv, &f), 0);
     }
     assert_int_equal(g_pv.phase, PFE_PREVIEW_READY);
 }
@@ -720,13 +722,13 @@ static const pfe_predict_result_t *predict_all(int32_t start_speed_mm_s)
     do {
         ph = pfe_predict_run(&g_pred, &g_pv, PFE_ECU_PREDICT_UNITS);
         calls++;
-        assert_true(calls < 100000U);
+        ASSERT_LT(calls, 100000U);
     } while ((ph != PFE_PREDICT_DONE) && (ph != PFE_PREDICT_IDLE));
     assert_int_equal(ph, PFE_PREDICT_DONE);
     const pfe_predict_result_t *r = pfe_predict_result(&g_pred);
     assert_true(r->valid);
-    assert_true(r->fuel_lower_ul <= r->fuel_ul);
-    assert_true(r->fuel_ul <= r->fuel_upper_ul);
+    ASSERT_LE(r->fuel_lower_ul, r->fuel_ul);
+    ASSERT_LE(r->fuel_ul, r->fuel_upper_ul);
     return r;
 }
 
@@ -750,7 +752,7 @@ static void test_predictor_longest_steepest_preview_heaviest_platoon(void **stat
     assert_int_equal(r->distance_m, 250000U);
     assert_in_range(r->time_ms, 73594000U - 73594U, 73594000U + 73594U);
     assert_in_range(r->fuel_ul / 1000000U, 2762840U - 13814U, 2762840U + 13814U);
-    assert_true(r->fuel_lower_ul >= r->fuel_ul - (r->fuel_ul / 200U));
+    ASSERT_GE(r->fuel_lower_ul, r->fuel_ul - (r->fuel_ul / 200U));
     assert_in_range(r->end_speed_mm_s, 3397 - 4, 3397 + 4);
     /* The preview's own extremes (-64 %, +64.51 %) are clamped to +-50 %:
      * the same prediction. */
@@ -758,7 +760,7 @@ static void test_predictor_longest_steepest_preview_heaviest_platoon(void **stat
     send_preview(645100, PFE_PREVIEW_MAX_SAMPLES, 250U);
     const uint64_t fuel = r->fuel_ul;
     r = predict_all(25000);
-    assert_true(r->fuel_ul == fuel);
+    assert_int_equal(r->fuel_ul, fuel);
     /* From standing: the run starts at its stall speed, 1 m/s. */
     r = predict_all(0);
     assert_in_range(r->time_ms, 73594000U - 73594U, 73594000U + 73594U);
@@ -779,13 +781,13 @@ static void test_predictor_bounds_hold_the_prediction(void **state)
     }
     send_preview(0, 126U, 12U);
     const pfe_predict_result_t *r = predict_all(25000);
-    assert_true(r->end_speed_mm_s < 25000);
-    assert_true(r->fuel_lower_ul >= r->fuel_ul - (r->fuel_ul / 2000U));
+    ASSERT_LT(r->end_speed_mm_s, 25000);
+    ASSERT_GE(r->fuel_lower_ul, r->fuel_ul - (r->fuel_ul / 2000U));
     (void)constant_road(-60000, 126U, 12000U);
     send_preview(-60000, 126U, 12U);
     r = predict_all(25000);
-    assert_true(r->fuel_ul == 0U);
-    assert_true(r->fuel_lower_ul == 0U);
+    assert_int_equal(r->fuel_ul, 0U);
+    assert_int_equal(r->fuel_lower_ul, 0U);
 }
 
 int main(void)

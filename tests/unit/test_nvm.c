@@ -7,6 +7,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_fixed.h"
 #include "pfe_nvm.h"
 
@@ -39,8 +41,8 @@ static void test_record_layout_and_round_trip(void **state)
     memset(&back, 0xA5, sizeof back);
     assert_int_equal(pfe_nvm_decode(rec, &back), PFE_OK);
     assert_int_equal(back.sequence, s.sequence);
-    assert_true(back.own_fuel_ul == s.own_fuel_ul);
-    assert_true(back.platoon_fuel_ul == s.platoon_fuel_ul);
+    assert_int_equal(back.own_fuel_ul, s.own_fuel_ul);
+    assert_int_equal(back.platoon_fuel_ul, s.platoon_fuel_ul);
     assert_int_equal(back.id_mass_kg, 12345);
     assert_int_equal(back.id_aux_w, 4000);
     assert_int_equal(back.id_flags, PFE_NVM_ID_VALID | PFE_NVM_ID_CONVERGED);
@@ -90,16 +92,18 @@ static void test_pick_newest_valid_slot(void **state)
     pfe_nvm_encode(&s, b);
     pfe_nvm_state_t got;
     assert_int_equal(pfe_nvm_pick(a, b, &got), 1);
-    assert_true(got.own_fuel_ul == 150U);
+    assert_int_equal(got.own_fuel_ul, 150U);
     assert_int_equal(pfe_nvm_next_slot(1), 0);
     assert_int_equal(pfe_nvm_pick(b, a, &got), 0);
     /* A torn newer slot: the older one wins. */
     b[20] ^= 0x40U;
     assert_int_equal(pfe_nvm_pick(a, b, &got), 0);
-    assert_true(got.own_fuel_ul == 100U);
+    assert_int_equal(got.own_fuel_ul, 100U);
     /* Nothing valid: zeros and -1. */
     assert_int_equal(pfe_nvm_pick(erased, NULL, &got), -1);
-    assert_true((got.sequence == 0U) && (got.own_fuel_ul == 0U) && (got.platoon_fuel_ul == 0U));
+    assert_int_equal(got.sequence, 0U);
+    assert_int_equal(got.own_fuel_ul, 0U);
+    assert_int_equal(got.platoon_fuel_ul, 0U);
     assert_int_equal(pfe_nvm_next_slot(-1), 0);
     /* Sequence wrap: 0 is newer than 0xFFFFFFFF. */
     s = (pfe_nvm_state_t){0xFFFFFFFFUL, 1U, 1U, 0U, 0U, 0U};
@@ -107,7 +111,7 @@ static void test_pick_newest_valid_slot(void **state)
     s = (pfe_nvm_state_t){0U, 2U, 2U, 0U, 0U, 0U};
     pfe_nvm_encode(&s, b);
     assert_int_equal(pfe_nvm_pick(a, b, &got), 1);
-    assert_true(got.own_fuel_ul == 2U);
+    assert_int_equal(got.own_fuel_ul, 2U);
 }
 
 int main(void)

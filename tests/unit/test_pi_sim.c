@@ -8,6 +8,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_fixed.h"
 #include "pfe_pi.h"
@@ -171,10 +173,10 @@ static void test_no_fuel_while_coasting_downhill(void **state)
     pfe_sim_t sim;
     assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 10000U), PFE_OK);
     while (pfe_sim_step(&sim, &road) == PFE_SIM_RUNNING) {
-        assert_true(sim.fuel_step_nl == 0U);
-        assert_true(sim.wheel_force_n < 0);
+        assert_int_equal(sim.fuel_step_nl, 0U);
+        ASSERT_LT(sim.wheel_force_n, 0);
     }
-    assert_true(sim.fuel_nl == 0U);
+    assert_int_equal(sim.fuel_nl, 0U);
     assert_in_range(pfe_sim_speed_mm_s(&sim), 24900, 25100);
 }
 
@@ -200,12 +202,12 @@ static void test_n_identical_trucks_without_slipstream_burn_n_times_one(void **s
     (void)state;
     const uint64_t one = hilly_fuel(1U);
     const uint64_t five = hilly_fuel(5U);
-    assert_true(one > 1000000000U); /* more than 1 L */
+    ASSERT_GT(one, 1000000000U);    /* more than 1 L */
     /* Identical up to rounding: the force and step computations see speed in
      * whole mm/s (2.4e-5 of 21 m/s at most), so within 3e-5 of 5 x one truck. */
     const uint64_t expect = 5U * one;
     const uint64_t diff = (five > expect) ? (five - expect) : (expect - five);
-    assert_true(diff <= (expect * 3U) / 100000U);
+    ASSERT_LE(diff, (expect * 3U) / 100000U);
 }
 
 static void test_too_steep_stalls_with_error(void **state)
@@ -219,7 +221,7 @@ static void test_too_steep_stalls_with_error(void **state)
     while ((rc = pfe_sim_step(&sim, &road)) == PFE_SIM_RUNNING) {
     }
     assert_int_equal(rc, PFE_ESTALL);
-    assert_true(sim.position_mm < 12000000U);
+    ASSERT_LT(sim.position_mm, 12000000U);
     assert_int_equal(pfe_sim_step(&sim, &road), PFE_ESTALL);
 }
 
@@ -266,7 +268,7 @@ static void test_sim_arguments_and_last_short_step(void **state)
      * step here), at the platoon's nL per mJ: within a nL of rounding a step. */
     const uint64_t aux_expected = (a.time_q16 * ((uint64_t)pl.object.power_aux_w * 1000U) *
                                    (uint64_t)pl.object.fuel_q20) >> 36;
-    assert_true(sums.aux_nl < a.fuel_nl);
+    ASSERT_LT(sums.aux_nl, a.fuel_nl);
     assert_in_range(sums.aux_nl, aux_expected - 5U, aux_expected + 5U);
 }
 

@@ -14,6 +14,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_codec.h"
 #include "pfe_fixed.h"
@@ -45,8 +47,8 @@ static void send_preview(void)
     m.preview_id.value = 5U;
     m.sample_count.value = SAMPLES;
     m.spacing_m.value = SPACING_M;
-    assert_true(pfe_codec_encode_grade_preview(&f, &m, 0x33U) >= 0);
-    assert_true(pfe_preview_push(&g_pv, &f) >= 0);
+    ASSERT_GE(pfe_codec_encode_grade_preview(&f, &m, 0x33U), 0);
+    ASSERT_GE(pfe_preview_push(&g_pv, &f), 0);
     for (uint32_t k = 0U; k < SAMPLES; k += PFE_PREVIEW_SAMPLES_PER_FRAME) {
         memset(&m, 0, sizeof m);
         m.frame_type.value = PFE_PREVIEW_FRAME_DATA;
@@ -59,8 +61,8 @@ static void send_preview(void)
                 m.grade_ppm[j].state = PFE_SIG_NOT_AVAILABLE;
             }
         }
-        assert_true(pfe_codec_encode_grade_preview(&f, &m, 0x33U) >= 0);
-        assert_true(pfe_preview_push(&g_pv, &f) >= 0);
+        ASSERT_GE(pfe_codec_encode_grade_preview(&f, &m, 0x33U), 0);
+        ASSERT_GE(pfe_preview_push(&g_pv, &f), 0);
     }
     assert_int_equal(g_pv.phase, PFE_PREVIEW_READY);
 }
@@ -82,13 +84,13 @@ static void predict(uint32_t gap_mm)
     do {
         ph = pfe_predict_run(&g_pred, &g_pv, 36U);
         slices++;
-        assert_true(slices < 10000U);
+        ASSERT_LT(slices, 10000U);
     } while ((ph != PFE_PREDICT_DONE) && (ph != PFE_PREDICT_IDLE));
     assert_int_equal(ph, PFE_PREDICT_DONE);
     const pfe_predict_result_t *r = pfe_predict_result(&g_pred);
     assert_true(r->valid);
-    assert_true(r->fuel_lower_ul <= r->fuel_ul);
-    assert_true(r->fuel_ul <= r->fuel_upper_ul);
+    ASSERT_LE(r->fuel_lower_ul, r->fuel_ul);
+    ASSERT_LE(r->fuel_ul, r->fuel_upper_ul);
 }
 
 /* Window of half-width w samples: the bump's 2 % (1000 in 20 ppm) within w

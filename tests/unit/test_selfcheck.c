@@ -11,6 +11,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_fixed.h"
 #include "pfe_selfcheck.h"
 
@@ -111,12 +113,12 @@ static void test_digest_is_deterministic_and_sees_the_platoon(void **state)
     assert_int_equal(pfe_selfcheck_run(&flat, 3U, 25000, &three), PFE_OK);
     /* Static state is reset: the second run of the same drive agrees. */
     assert_int_equal(pfe_selfcheck_run(&flat, 1U, 25000, &b), PFE_OK);
-    assert_true(a.digest == b.digest);
-    assert_true(a.digest != three.digest);
+    assert_int_equal(a.digest, b.digest);
+    assert_int_not_equal(a.digest, three.digest);
     /* Three trucks: the lead, in clean air, burns more than a third of the
      * platoon's fuel (2 and 3 draft), and less than half. */
-    assert_true(three.est_pos0_fuel_ul * 3U > three.est_fuel_ul);
-    assert_true(three.est_pos0_fuel_ul * 2U < three.est_fuel_ul);
+    ASSERT_GT(three.est_pos0_fuel_ul * 3U, three.est_fuel_ul);
+    ASSERT_LT(three.est_pos0_fuel_ul * 2U, three.est_fuel_ul);
 }
 
 /*

@@ -8,6 +8,8 @@
 
 #include <cmocka.h>
 
+#include "../test_assert.h"
+
 #include "pfe_calib.h"
 #include "pfe_fixed.h"
 #include "pfe_platoon.h"
@@ -80,7 +82,7 @@ static void test_fuel_rate_and_fuel_cut(void **state)
     assert_int_equal(pfe_fuel_rate_nl_s(0, 25000, 4000U, v.fuel_q20), 0);
     assert_int_equal(pfe_fuel_rate_nl_s(-30000, 25000, 4000U, v.fuel_q20), 0);
     /* Saturates instead of wrapping. */
-    assert_true(pfe_fuel_rate_nl_s(INT32_MAX, 70000, 100000U, v.fuel_q20) == UINT32_MAX);
+    assert_int_equal(pfe_fuel_rate_nl_s(INT32_MAX, 70000, 100000U, v.fuel_q20), UINT32_MAX);
 }
 
 static void test_fuel_force_includes_rotating_mass(void **state)
