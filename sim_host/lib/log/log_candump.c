@@ -139,30 +139,17 @@ int log_parse_log_line(canlog_reader_t *r, const char *line, canlog_frame_t *f)
     }
     p++;
     uint64_t t;
-    int sd, nf;
-    if (log_parse_seconds(&p, &t, &sd, &nf) != 0) {
-        if (*p == '\0') {
-            return log_fail(r, CANLOG_E_TRUNCATED, "line ends in the timestamp");
-        }
-        return log_fail(r, CANLOG_E_BAD_TIME, "expected (SECONDS.FRACTION)");
+    int sd;
+    int rc = log_paren_seconds(r, &p, &t, &sd);
+    if (rc != 0) {
+        return rc;
     }
-    if (*p != ')') {
-        if (*p == '\0') {
-            return log_fail(r, CANLOG_E_TRUNCATED, "line ends in the timestamp");
-        }
-        return log_fail(r, CANLOG_E_BAD_TIME, "%s where ')' should close the timestamp",
-                    log_show_char(*p, cbuf));
-    }
-    if ((nf != 6) && (nf != 9)) {
-        return log_fail(r, CANLOG_E_BAD_TIME, "%d fraction digits; 6 or 9 expected", nf);
-    }
-    p = skip_blanks(p + 1);
     const char *e = token_end(p);
     if (*e == '\0') {
         return log_fail(r, CANLOG_E_TRUNCATED, (e == p) ? "no interface and frame after the timestamp"
                                                     : "no frame after the interface");
     }
-    int rc = log_take_iface(r, p, e, f);
+    rc = log_take_iface(r, p, e, f);
     if (rc != 0) {
         return rc;
     }

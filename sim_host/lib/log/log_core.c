@@ -572,6 +572,36 @@ int log_accept_time(canlog_reader_t *r, canlog_time_base_t tb, uint64_t t, uint6
     return 0;
 }
 
+int log_paren_close(canlog_reader_t *r, const char **pp, int frac_digits)
+{
+    char cbuf[16];
+    const char *p = *pp;
+    if (*p != ')') {
+        if (*p == '\0') {
+            return log_fail(r, CANLOG_E_TRUNCATED, "line ends in the timestamp");
+        }
+        return log_fail(r, CANLOG_E_BAD_TIME, "%s where ')' should close the timestamp",
+                        log_show_char(*p, cbuf));
+    }
+    if ((frac_digits != 6) && (frac_digits != 9)) {
+        return log_fail(r, CANLOG_E_BAD_TIME, "%d fraction digits; 6 or 9 expected", frac_digits);
+    }
+    *pp = skip_blanks(p + 1);
+    return 0;
+}
+
+int log_paren_seconds(canlog_reader_t *r, const char **pp, uint64_t *us, int *sec_digits)
+{
+    int nf;
+    if (log_parse_seconds(pp, us, sec_digits, &nf) != 0) {
+        if (**pp == '\0') {
+            return log_fail(r, CANLOG_E_TRUNCATED, "line ends in the timestamp");
+        }
+        return log_fail(r, CANLOG_E_BAD_TIME, "expected (SECONDS.FRACTION)");
+    }
+    return log_paren_close(r, pp, nf);
+}
+
 /* Copies the interface token [p, e) into f->iface. */
 int log_take_iface(canlog_reader_t *r, const char *p, const char *e, canlog_frame_t *f)
 {

@@ -111,6 +111,13 @@ bool log_fd_len_valid(unsigned len);
 int log_check_len(canlog_reader_t *r, bool fd, unsigned len);
 int log_make_id(canlog_reader_t *r, int digits, uint32_t v, uint32_t *id);
 int log_accept_time(canlog_reader_t *r, canlog_time_base_t tb, uint64_t t, uint64_t *out);
+/* The end of a timestamp in parentheses at *pp, its fraction of FRAC_DIGITS
+ * digits read: the ')' and 6 or 9 digits, then *pp past the ')' and the
+ * blanks after it. 0, or -reason. */
+int log_paren_close(canlog_reader_t *r, const char **pp, int frac_digits);
+/* "SECONDS.FRACTION)" at *pp (the '(' read): *us, *sec_digits, then as
+ * log_paren_close(). 0, or -reason. */
+int log_paren_seconds(canlog_reader_t *r, const char **pp, uint64_t *us, int *sec_digits);
 int log_take_iface(canlog_reader_t *r, const char *p, const char *e, canlog_frame_t *f);
 bool log_is_comment(const char *p);
 bool log_note_dropcount(canlog_reader_t *r, const char *p);
