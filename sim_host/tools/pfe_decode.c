@@ -513,15 +513,22 @@ static const char *default_dbc(char *buf, size_t size)
     return "can_dbc/pfe.dbc";
 }
 
-int main(int argc, char **argv)
-{
-    const char *dbc_path = NULL;
-    const char *log_path = NULL;
-    bool csv = false;
-    bool skip = false;
-    canlog_format_t format = CANLOG_FMT_AUTO;
+typedef struct {
+    const char *dbc_path;   /* NULL: default_dbc() */
+    const char *log_path;   /* NULL or "-": standard input */
+    bool csv;
+    bool skip;              /* --skip-errors */
+    canlog_format_t format;
     char *selected[MAX_SELECTED];
-    unsigned n_selected = 0U;
+    unsigned n_selected;
+} options_t;
+
+/* The command line into *o. Returns -1 to go on, else the exit status
+ * (0 after --help, EXIT_USAGE with the reason printed). */
+static int parse_args(int argc, char **argv, options_t *o)
+{
+    memset(o, 0, sizeof *o);
+    o->format = CANLOG_FMT_AUTO;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
@@ -529,32 +536,32 @@ int main(int argc, char **argv)
             usage(stdout);
             return 0;
         } else if (strcmp(a, "--csv") == 0) {
-            csv = true;
+            o->csv = true;
         } else if (strcmp(a, "--skip-errors") == 0) {
-            skip = true;
+            o->skip = true;
         } else if ((a[0] != '-') || (strcmp(a, "-") == 0)) {
-            if (log_path != NULL) {
+            if (o->log_path != NULL) {
                 fprintf(stderr, "pfe_decode: one log at a time\n");
                 usage(stderr);
                 return EXIT_USAGE;
             }
-            log_path = a;
+            o->log_path = a;
         } else if (v == NULL) {
             fprintf(stderr, "pfe_decode: %s needs a value\n", a);
             usage(stderr);
             return EXIT_USAGE;
         } else if (strcmp(a, "--dbc") == 0) {
-            dbc_path = v;
+            o->dbc_path = v;
             i++;
         } else if (strcmp(a, "--message") == 0) {
-            if (n_selected == MAX_SELECTED) {
+            if (o->n_selected == MAX_SELECTED) {
                 fprintf(stderr, "pfe_decode: more than %u --message\n", MAX_SELECTED);
                 return EXIT_USAGE;
             }
-            selected[n_selected++] = argv[i + 1];
+            o->selected[o->n_selected++] = argv[i + 1];
             i++;
         } else if (strcmp(a, "--format") == 0) {
-            if (canlog_format_parse(v, &format) != 0) {
+            if (canlog_format_parse(v, &o->format) != 0) {
                 fprintf(stderr, "pfe_decode: --format %s: auto, log, printed, printed-delta or asc\n", v);
                 return EXIT_USAGE;
             }
@@ -565,134 +572,196 @@ int main(int argc, char **argv)
             return EXIT_USAGE;
         }
     }
-    char dbc_buf[PATH_MAX + 32];
-    if (dbc_path == NULL) {
-        dbc_path = default_dbc(dbc_buf, sizeof dbc_buf);
-    }
+    return -1;
+}
 
-    decoder_t d;
-    memset(&d, 0, sizeof d);
-    d.csv = csv;
+/* The DBC at path into d->dbc: 0, or EXIT_INPUT with the reason printed
+ * (a DBC without a message decodes nothing, and is refused). */
+static int load_dbc(decoder_t *d, const char *path)
+{
     dbc_error_t err;
-    if (dbc_parse_file(dbc_path, &d.dbc, &err) != 0) {
+    if (dbc_parse_file(path, &d->dbc, &err) != 0) {
         if (err.line > 0) {
-            fprintf(stderr, "pfe_decode: %s:%d: %s\n", dbc_path, err.line, err.message);
+            fprintf(stderr, "pfe_decode: %s:%d: %s\n", path, err.line, err.message);
         } else {
-            fprintf(stderr, "pfe_decode: %s: %s\n", dbc_path, err.message);
+            fprintf(stderr, "pfe_decode: %s: %s\n", path, err.message);
         }
         return EXIT_INPUT;
     }
-    if (d.dbc->n_messages == 0U) {
+    if (d->dbc->n_messages == 0U) {
         /* an empty or comment-only file parses, but decodes nothing */
-        fprintf(stderr, "pfe_decode: %s: no message (BO_) in the DBC: nothing to decode with\n",
-                dbc_path);
-        dbc_free(d.dbc);
+        fprintf(stderr, "pfe_decode: %s: no message (BO_) in the DBC: nothing to decode with\n", path);
+        dbc_free(d->dbc);
         return EXIT_INPUT;
     }
-    int status = 0;
-    int fd = STDIN_FILENO;
-    const char *name = "<stdin>";
-    static canlog_reader_t reader;
-    char **cells = NULL;
-    const size_t cell_size = 64U;
-    if (prepare(&d, selected, n_selected) != 0) {
-        status = EXIT_INPUT;
-        goto out;
-    }
-    if ((log_path != NULL) && (strcmp(log_path, "-") != 0)) {
-        fd = open(log_path, O_RDONLY | O_CLOEXEC);
-        if (fd < 0) {
-            fprintf(stderr, "pfe_decode: cannot open %s: %s\n", log_path, strerror(errno));
-            status = EXIT_INPUT;
-            goto out;
+    return 0;
+}
+
+static void free_decoder(decoder_t *d)
+{
+    if (d->msgs != NULL) {
+        for (size_t m = 0U; m < d->n_msgs; m++) {
+            free(d->msgs[m].sigs);
         }
-        name = log_path;
+        free(d->msgs);
     }
-    (void)canlog_open_fd(&reader, fd, name, format,
-                         skip ? CANLOG_ON_ERROR_SKIP : CANLOG_ON_ERROR_STOP);
-    if (csv) {
-        cells = calloc((d.n_columns > 0U) ? d.n_columns : 1U, sizeof *cells);
-        if (cells == NULL) {
-            status = EXIT_INPUT;
-            goto out;
-        }
-        for (unsigned c = 0U; c < d.n_columns; c++) {
-            cells[c] = calloc(cell_size, 1U);
-            if (cells[c] == NULL) {
-                status = EXIT_INPUT;
-                goto out;
+    dbc_free(d->dbc);
+}
+
+/* The CSV's cells: n columns of size bytes each, or NULL (nothing left
+ * allocated) when memory runs out. */
+static char **alloc_cells(unsigned n, size_t size)
+{
+    char **cells = calloc((n > 0U) ? n : 1U, sizeof *cells);
+    if (cells == NULL) {
+        return NULL;
+    }
+    for (unsigned c = 0U; c < n; c++) {
+        cells[c] = calloc(size, 1U);
+        if (cells[c] == NULL) {
+            for (unsigned k = 0U; k < c; k++) {
+                free(cells[k]);
             }
-        }
-        csv_header(&d);
-    }
-    canlog_frame_t f;
-    for (;;) {
-        const int rc = canlog_next(&reader, &f);
-        if (rc == 0) {
-            break;
-        }
-        if (rc < 0) {
-            fprintf(stderr, "pfe_decode: %s\n", canlog_message(&reader));
-            status = EXIT_INPUT;
-            break;
-        }
-        const bool error_frame = (f.id & CANLOG_ERR_FLAG) != 0U;
-        const msg_info_t *mi = error_frame ? NULL : find_message(&d, f.id);
-        if ((mi != NULL) && !mi->selected) {
-            continue;
-        }
-        if (mi == NULL) {
-            d.unknown++;
-            if (!csv && (n_selected == 0U)) {
-                print_time(&f);
-                printf(" %s ", f.iface);
-                print_id(&f);
-                printf(error_frame ? " ERRORFRAME " : " ? ");
-                if ((f.id & CANLOG_RTR_FLAG) != 0U) {
-                    printf("remote request\n");
-                } else {
-                    print_data(&f);
-                    putchar('\n');
-                }
-            }
-            continue;
-        }
-        if (csv) {
-            decode_csv(&d, mi, &f, cells, cell_size);
-        } else {
-            decode_text(&d, mi, &f);
+            free(cells);
+            return NULL;
         }
     }
-    if (fflush(stdout) != 0) {
-        fprintf(stderr, "pfe_decode: writing the output failed\n");
-        status = EXIT_INPUT;
-    }
-    fprintf(stderr, "pfe_decode: %llu frames, %llu decoded, %llu not in the DBC, %llu parse errors\n",
-            (unsigned long long)reader.frames, (unsigned long long)d.decoded,
-            (unsigned long long)d.unknown, (unsigned long long)reader.error_lines);
-    for (int i = 1; i < (int)CANLOG_REASON_COUNT; i++) {
-        if ((reader.errors[i] > 0U) && skip) {
-            fprintf(stderr, "pfe_decode:   %llu x %s, the first: %s\n",
-                    (unsigned long long)reader.errors[i], canlog_reason_text(i),
-                    reader.first_msg[i]);
-        }
-    }
-out:
+    return cells;
+}
+
+static void free_cells(char **cells, unsigned n)
+{
     if (cells != NULL) {
-        for (unsigned c = 0U; c < d.n_columns; c++) {
+        for (unsigned c = 0U; c < n; c++) {
             free(cells[c]);
         }
         free(cells);
     }
-    if (d.msgs != NULL) {
-        for (size_t m = 0U; m < d.n_msgs; m++) {
-            free(d.msgs[m].sigs);
-        }
-        free(d.msgs);
+}
+
+/* A frame of no message of the DBC (or an error frame), in the text output. */
+static void print_unknown(const canlog_frame_t *f, bool error_frame)
+{
+    print_time(f);
+    printf(" %s ", f->iface);
+    print_id(f);
+    printf(error_frame ? " ERRORFRAME " : " ? ");
+    if ((f->id & CANLOG_RTR_FLAG) != 0U) {
+        printf("remote request\n");
+    } else {
+        print_data(f);
+        putchar('\n');
     }
-    dbc_free(d.dbc);
+}
+
+/* Every frame of the log decoded and printed, as text or CSV (cells given).
+ * Returns 0, or EXIT_INPUT at a line that stops the reader. */
+static int decode_log(decoder_t *d, canlog_reader_t *reader, const options_t *o, char **cells,
+                      size_t cell_size)
+{
+    canlog_frame_t f;
+    for (;;) {
+        const int rc = canlog_next(reader, &f);
+        if (rc == 0) {
+            return 0;
+        }
+        if (rc < 0) {
+            fprintf(stderr, "pfe_decode: %s\n", canlog_message(reader));
+            return EXIT_INPUT;
+        }
+        const bool error_frame = (f.id & CANLOG_ERR_FLAG) != 0U;
+        const msg_info_t *mi = error_frame ? NULL : find_message(d, f.id);
+        if ((mi != NULL) && !mi->selected) {
+            continue;
+        }
+        if (mi == NULL) {
+            d->unknown++;
+            if (!o->csv && (o->n_selected == 0U)) {
+                print_unknown(&f, error_frame);
+            }
+        } else if (o->csv) {
+            decode_csv(d, mi, &f, cells, cell_size);
+        } else {
+            decode_text(d, mi, &f);
+        }
+    }
+}
+
+/* The counts on stderr; with --skip-errors, the first line of each kind of error. */
+static void print_summary(const decoder_t *d, const canlog_reader_t *reader, bool skip)
+{
+    fprintf(stderr, "pfe_decode: %llu frames, %llu decoded, %llu not in the DBC, %llu parse errors\n",
+            (unsigned long long)reader->frames, (unsigned long long)d->decoded,
+            (unsigned long long)d->unknown, (unsigned long long)reader->error_lines);
+    for (int i = 1; i < (int)CANLOG_REASON_COUNT; i++) {
+        if ((reader->errors[i] > 0U) && skip) {
+            fprintf(stderr, "pfe_decode:   %llu x %s, the first: %s\n",
+                    (unsigned long long)reader->errors[i], canlog_reason_text(i),
+                    reader->first_msg[i]);
+        }
+    }
+}
+
+/* The log of o decoded through d's DBC: the exit status. */
+static int run(decoder_t *d, options_t *o)
+{
+    if (prepare(d, o->selected, o->n_selected) != 0) {
+        return EXIT_INPUT;
+    }
+    int fd = STDIN_FILENO;
+    const char *name = "<stdin>";
+    if ((o->log_path != NULL) && (strcmp(o->log_path, "-") != 0)) {
+        fd = open(o->log_path, O_RDONLY | O_CLOEXEC);
+        if (fd < 0) {
+            fprintf(stderr, "pfe_decode: cannot open %s: %s\n", o->log_path, strerror(errno));
+            return EXIT_INPUT;
+        }
+        name = o->log_path;
+    }
+    static canlog_reader_t reader;
+    (void)canlog_open_fd(&reader, fd, name, o->format, o->skip ? CANLOG_ON_ERROR_SKIP : CANLOG_ON_ERROR_STOP);
+    const size_t cell_size = 64U;
+    char **cells = NULL;
+    int status = 0;
+    if (o->csv) {
+        cells = alloc_cells(d->n_columns, cell_size);
+        if (cells == NULL) {
+            status = EXIT_INPUT;
+        } else {
+            csv_header(d);
+        }
+    }
+    if (status == 0) {
+        status = decode_log(d, &reader, o, cells, cell_size);
+        if (fflush(stdout) != 0) {
+            fprintf(stderr, "pfe_decode: writing the output failed\n");
+            status = EXIT_INPUT;
+        }
+        print_summary(d, &reader, o->skip);
+    }
+    free_cells(cells, d->n_columns);
     if (fd != STDIN_FILENO) {
         (void)close(fd);
     }
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    static options_t o;
+    const int rc = parse_args(argc, argv, &o);
+    if (rc >= 0) {
+        return rc;
+    }
+    char dbc_buf[PATH_MAX + 32];
+    const char *dbc_path = (o.dbc_path != NULL) ? o.dbc_path : default_dbc(dbc_buf, sizeof dbc_buf);
+    decoder_t d;
+    memset(&d, 0, sizeof d);
+    d.csv = o.csv;
+    if (load_dbc(&d, dbc_path) != 0) {
+        return EXIT_INPUT;
+    }
+    const int status = run(&d, &o);
+    free_decoder(&d);
     return status;
 }
