@@ -1249,11 +1249,10 @@ typedef struct {
     own_source_t own_src;           /* where the module's own-truck figures are */
 } analysis_t;
 
-/* The module's frames against the reference run: quantities and CSV rows. */
-static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *run, FILE *csv,
-                    analysis_t *a)
+/* Frames counted by sender (the module, the inputs) and the inputs' first
+ * and last times. */
+static void count_frames(const capture_t *cap, const options_t *o, analysis_t *a)
 {
-    memset(a, 0, sizeof *a);
     for (size_t k = 0U; k < cap->n; k++) {
         const capture_rec_t *r = &cap->recs[k];
         if (pfe_j1939_source(r->f.id) == o->module_sa) {
@@ -1266,127 +1265,184 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
             a->n_in++;
         }
     }
+}
+
+/* The inputs as last seen in the capture, for the CSV and the distance. */
+typedef struct {
+    double speed_kmh, grade_pct, last_speed_m_s;
+    bool have_speed, have_grade;
+    uint64_t last_speed_us;
+} inputs_t;
+
+/* An input frame (not the module's): CCVS1's speed (and the distance
+ * driven), SSI's grade. */
+static void note_input(analysis_t *a, inputs_t *in, const capture_rec_t *r, uint32_t pgn)
+{
+    if (pgn == PFE_PGN_CCVS1) {
+        pfe_msg_ccvs1_t m;
+        if ((pfe_codec_decode_ccvs1(&r->f, &m) >= 0) && (m.speed_mm_s.state == PFE_SIG_VALID)) {
+            const double v = m.speed_mm_s.value / 1000.0;
+            if (in->have_speed && ((r->t_us - in->last_speed_us) <= SPEED_GAP_MAX_US)) {
+                a->distance_m += in->last_speed_m_s * (double)(r->t_us - in->last_speed_us) / 1e6;
+            }
+            in->have_speed = true;
+            in->last_speed_m_s = v;
+            in->last_speed_us = r->t_us;
+            in->speed_kmh = v * 3.6;
+        }
+    } else if (pgn == PFE_PGN_SSI) {
+        pfe_msg_ssi_t m;
+        if ((pfe_codec_decode_ssi(&r->f, &m) >= 0) && (m.pitch_udeg.state == PFE_SIG_VALID)) {
+            in->grade_pct = 100.0 * tan(m.pitch_udeg.value / 1e6 * PI / 180.0);
+            in->have_grade = true;
+        }
+    }
+}
+
+/* The reference at a module frame's instant. */
+typedef struct {
+    size_t st;              /* state a module tick just before it could have seen */
+    bool have_tick;
+    double own_used;        /* fuel used at the first tick at or after it, L */
+    double platoon_used;
+    bool judged;            /* after warm-up, within the inputs */
+    double t_s;             /* since the first input */
+} ref_at_t;
+
+static void ref_at(const ref_run_t *run, const analysis_t *a, uint64_t warm_us, uint64_t t_us,
+                   size_t *hint, size_t *shint, ref_at_t *ra)
+{
+    /* None before the first input: nothing used yet. */
+    const bool started = t_us >= a->t_first_in;
+    ra->t_s = started ? (double)(t_us - a->t_first_in) / 1e6 : 0.0;
+    const size_t at = started ? tick_at(run, t_us, hint) : 0U;
+    ra->st = started ? state_before(run, t_us, shint) : run->n_states;
+    ra->have_tick = started && (at < run->n_ticks) && (ra->st < run->n_states);
+    const tick_t *tk = ra->have_tick ? &run->ticks[at] : NULL;
+    ra->own_used = (tk != NULL) ? tk->own_used : 0.0;
+    ra->platoon_used = (tk != NULL) ? tk->platoon_used : 0.0;
+    ra->judged = ra->have_tick && (t_us >= warm_us) && (t_us <= a->t_last_in);
+}
+
+/* PFE_PlatoonFuel: its total, and its rate where the bus was calm. */
+static void note_platoon_fuel(analysis_t *a, const options_t *o, const ref_run_t *run,
+                              const disturb_t *dist, const capture_rec_t *r, const ref_at_t *ra)
+{
+    pfe_msg_platoon_fuel_t m;
+    if (pfe_codec_decode_platoon_fuel(&r->f, &m) < 0) {
+        return;
+    }
+    if (m.fuel_used_ul.state == PFE_SIG_VALID) {
+        totals_note(&a->platoon_total, (double)m.fuel_used_ul.value / 1e6, ra->platoon_used);
+    }
+    const bool calm = ra->judged && !disturbed(dist, r->t_us);
+    a->rate_frames += ra->judged ? 1U : 0U;
+    a->rate_disturbed += (ra->judged && !calm) ? 1U : 0U;
+    if (calm && (m.fuel_rate_nl_s.state == PFE_SIG_VALID)) {
+        const double got = m.fuel_rate_nl_s.value / 1e9;
+        double want = 0.0;
+        (void)nearest_rate(run, ra->st, r->t_us, true, got, &want);
+        rate_compare(&a->platoon, got, want, ra->t_s, o->floor_l_h);
+    }
+}
+
+/* PFE_DeviceStatus: the module's counters, and its mode once judged. */
+static void note_status(analysis_t *a, const capture_rec_t *r, bool judged)
+{
+    pfe_msg_status_t m;
+    if (pfe_codec_decode_status(&r->f, &m) < 0) {
+        return;
+    }
+    if (m.tick_overruns.state == PFE_SIG_VALID) {
+        set_q(Q_OVERRUNS, m.tick_overruns.value);
+    }
+    if (m.rx_frames_dropped.state == PFE_SIG_VALID) {
+        set_q(Q_RX_DROPPED, m.rx_frames_dropped.value);
+    }
+    if (m.tx_frames_dropped.state == PFE_SIG_VALID) {
+        set_q(Q_TX_DROPPED, m.tx_frames_dropped.value);
+    }
+    if (judged) {
+        a->status_judged++;
+        a->status_normal += ((m.mode.state == PFE_SIG_VALID) && (m.mode.value == PFE_MODE_NORMAL)) ? 1U : 0U;
+    }
+}
+
+/* The own truck's rate (PFE_OwnFuel, else LFE1): judged against the
+ * reference, and a CSV row. */
+static void note_own_rate(analysis_t *a, const options_t *o, const ref_run_t *run, const disturb_t *dist,
+                          const inputs_t *in, const own_sample_t *own, const capture_rec_t *r,
+                          const ref_at_t *ra, FILE *csv)
+{
+    const bool valid = own->rate_valid;
+    const double got = own->rate_l_s;
+    if (ra->judged) {
+        /* Not available is right where the reference has no
+         * estimate either; a rate is compared with 0 there. */
+        const bool calm = !disturbed(dist, r->t_us);
+        double want = 0.0;
+        const bool ref_valid = ra->have_tick && nearest_rate(run, ra->st, r->t_us, false, got, &want);
+        a->lfe1++;
+        a->rate_frames++;
+        if (!calm) {
+            a->rate_disturbed++;
+        } else if (!valid) {
+            a->lfe1_na += ref_valid ? 1U : 0U;
+        } else {
+            rate_compare(&a->own, got, want, ra->t_s, o->floor_l_h);
+        }
+    }
+    if (ra->have_tick && (r->t_us <= a->t_last_in)) {
+        const bool have[CSV_COLS] = {in->have_speed, in->have_grade, valid, run->states[ra->st].valid,
+                                     a->own_total.have, a->own_total.have};
+        fprintf(csv, "%.3f", ra->t_s);
+        csv_value(csv, have[0], in->speed_kmh, 3);
+        csv_value(csv, have[1], in->grade_pct, 4);
+        csv_value(csv, have[2], got * L_S_TO_L_H, 2);
+        csv_value(csv, have[3], run->states[ra->st].own_rate * L_S_TO_L_H, 3);
+        csv_value(csv, have[4], a->own_total.last - a->own_total.first, 3);
+        csv_value(csv, have[5], ra->own_used - a->own_total.ref_first, 5);
+        fputc('\n', csv);
+        a->csv_rows++;
+        plot_note(&a->plot, ra->t_s, have);
+    }
+}
+
+/* The module's frames against the reference run: quantities and CSV rows. */
+static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *run, FILE *csv,
+                    analysis_t *a)
+{
+    memset(a, 0, sizeof *a);
+    count_frames(cap, o, a);
     a->own_src = own_source(cap, (uint8_t)o->module_sa);
     const uint64_t warm_us = a->t_first_in + (uint64_t)llround(o->warmup_s * 1e6);
     static disturb_t dist;
     disturb_find(cap, (uint8_t)o->module_sa, &dist);
     a->input_events = dist.input_events;
     a->overrun_events = dist.overrun_events;
-    double speed_kmh = 0.0, grade_pct = 0.0, last_speed_m_s = 0.0;
-    bool have_speed = false, have_grade = false;
-    uint64_t last_speed_us = 0U;
+    inputs_t in = {0};
     size_t hint = 0U, shint = 0U;
     fprintf(csv, "time_s,speed_kmh,grade_pct,module_rate_l_h,ref_rate_l_h,module_total_l,ref_total_l\n");
     for (size_t k = 0U; k < cap->n; k++) {
         const capture_rec_t *r = &cap->recs[k];
         const uint32_t pgn = pfe_j1939_pgn(r->f.id);
-        const bool started = r->t_us >= a->t_first_in;
-        const double t_s = started ? (double)(r->t_us - a->t_first_in) / 1e6 : 0.0;
         if (pfe_j1939_source(r->f.id) != o->module_sa) {
-            if (pgn == PFE_PGN_CCVS1) {
-                pfe_msg_ccvs1_t m;
-                if ((pfe_codec_decode_ccvs1(&r->f, &m) >= 0) &&
-                    (m.speed_mm_s.state == PFE_SIG_VALID)) {
-                    const double v = m.speed_mm_s.value / 1000.0;
-                    if (have_speed && ((r->t_us - last_speed_us) <= SPEED_GAP_MAX_US)) {
-                        a->distance_m += last_speed_m_s * (double)(r->t_us - last_speed_us) / 1e6;
-                    }
-                    have_speed = true;
-                    last_speed_m_s = v;
-                    last_speed_us = r->t_us;
-                    speed_kmh = v * 3.6;
-                }
-            } else if (pgn == PFE_PGN_SSI) {
-                pfe_msg_ssi_t m;
-                if ((pfe_codec_decode_ssi(&r->f, &m) >= 0) && (m.pitch_udeg.state == PFE_SIG_VALID)) {
-                    grade_pct = 100.0 * tan(m.pitch_udeg.value / 1e6 * PI / 180.0);
-                    have_grade = true;
-                }
-            }
+            note_input(a, &in, r, pgn);
             continue;
         }
-        /* The reference at this instant: fuel used at the first tick at or
-         * after it (none before the first input: nothing used yet); rates
-         * of the states a module tick just before it could have seen. */
-        const size_t at = started ? tick_at(run, r->t_us, &hint) : 0U;
-        const size_t st = started ? state_before(run, r->t_us, &shint) : run->n_states;
-        const bool have_tick = started && (at < run->n_ticks) && (st < run->n_states);
-        const tick_t *tk = have_tick ? &run->ticks[at] : NULL;
-        const double own_used = (tk != NULL) ? tk->own_used : 0.0;
-        const double platoon_used = (tk != NULL) ? tk->platoon_used : 0.0;
-        const bool judged = have_tick && (r->t_us >= warm_us) && (r->t_us <= a->t_last_in);
+        ref_at_t ra;
+        ref_at(run, a, warm_us, r->t_us, &hint, &shint, &ra);
         /* the own truck's figures: PFE_OwnFuel, else LFE1 and HRLFC */
         own_sample_t own;
         if (own_sample(&r->f, a->own_src, &own) && own.total_valid) {
-            totals_note(&a->own_total, own.total_l, own_used);
+            totals_note(&a->own_total, own.total_l, ra.own_used);
         }
         if (pgn == PFE_PGN_PLATOON_FUEL) {
-            pfe_msg_platoon_fuel_t m;
-            if (pfe_codec_decode_platoon_fuel(&r->f, &m) >= 0) {
-                if (m.fuel_used_ul.state == PFE_SIG_VALID) {
-                    totals_note(&a->platoon_total, (double)m.fuel_used_ul.value / 1e6, platoon_used);
-                }
-                const bool calm = judged && !disturbed(&dist, r->t_us);
-                a->rate_frames += judged ? 1U : 0U;
-                a->rate_disturbed += (judged && !calm) ? 1U : 0U;
-                if (calm && (m.fuel_rate_nl_s.state == PFE_SIG_VALID)) {
-                    const double got = m.fuel_rate_nl_s.value / 1e9;
-                    double want = 0.0;
-                    (void)nearest_rate(run, st, r->t_us, true, got, &want);
-                    rate_compare(&a->platoon, got, want, t_s, o->floor_l_h);
-                }
-            }
+            note_platoon_fuel(a, o, run, &dist, r, &ra);
         } else if (pgn == PFE_PGN_STATUS) {
-            pfe_msg_status_t m;
-            if (pfe_codec_decode_status(&r->f, &m) >= 0) {
-                if (m.tick_overruns.state == PFE_SIG_VALID) {
-                    set_q(Q_OVERRUNS, m.tick_overruns.value);
-                }
-                if (m.rx_frames_dropped.state == PFE_SIG_VALID) {
-                    set_q(Q_RX_DROPPED, m.rx_frames_dropped.value);
-                }
-                if (m.tx_frames_dropped.state == PFE_SIG_VALID) {
-                    set_q(Q_TX_DROPPED, m.tx_frames_dropped.value);
-                }
-                if (judged) {
-                    a->status_judged++;
-                    a->status_normal += ((m.mode.state == PFE_SIG_VALID) &&
-                                         (m.mode.value == PFE_MODE_NORMAL)) ? 1U : 0U;
-                }
-            }
+            note_status(a, r, ra.judged);
         } else if (own.has_rate) {
-            const bool valid = own.rate_valid;
-            const double got = own.rate_l_s;
-            if (judged) {
-                /* Not available is right where the reference has no
-                 * estimate either; a rate is compared with 0 there. */
-                const bool calm = !disturbed(&dist, r->t_us);
-                double want = 0.0;
-                const bool ref_valid = have_tick && nearest_rate(run, st, r->t_us, false, got, &want);
-                a->lfe1++;
-                a->rate_frames++;
-                if (!calm) {
-                    a->rate_disturbed++;
-                } else if (!valid) {
-                    a->lfe1_na += ref_valid ? 1U : 0U;
-                } else {
-                    rate_compare(&a->own, got, want, t_s, o->floor_l_h);
-                }
-            }
-            if (have_tick && (r->t_us <= a->t_last_in)) {
-                const bool have[CSV_COLS] = {have_speed, have_grade, valid, run->states[st].valid,
-                                             a->own_total.have, a->own_total.have};
-                fprintf(csv, "%.3f", t_s);
-                csv_value(csv, have[0], speed_kmh, 3);
-                csv_value(csv, have[1], grade_pct, 4);
-                csv_value(csv, have[2], got * L_S_TO_L_H, 2);
-                csv_value(csv, have[3], run->states[st].own_rate * L_S_TO_L_H, 3);
-                csv_value(csv, have[4], a->own_total.last - a->own_total.first, 3);
-                csv_value(csv, have[5], own_used - a->own_total.ref_first, 5);
-                fputc('\n', csv);
-                a->csv_rows++;
-                plot_note(&a->plot, t_s, have);
-            }
+            note_own_rate(a, o, run, &dist, &in, &own, r, &ra, csv);
         }
     }
     free(dist.spans);
