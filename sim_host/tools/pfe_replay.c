@@ -818,138 +818,114 @@ static bool takes_value(const char *opt)
 }
 
 /* Parses the command line into rp. Returns 0, 1 for -h (done), or -1. */
-static int parse_args(replay_t *rp, int argc, char **argv)
+/* A flag without a value (-t, -x, -v, --dry-run, --skip-errors,
+ * --skip-unknown, --allow-real-bus, --quiet): true, and set, when a is one. */
+static bool set_flag(replay_t *rp, const char *a)
 {
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        double d = 0.0;
-        uint64_t u = 0U;
-        bool used_value = true;
-        if ((strcmp(a, "-h") == 0) || (strcmp(a, "--help") == 0)) {
-            usage(stdout);
-            return 1;
-        } else if (strcmp(a, "-t") == 0) {
-            rp->ignore_ts = true;
-            used_value = false;
-        } else if (strcmp(a, "-x") == 0) {
-            rp->no_loopback = true;
-            used_value = false;
-        } else if (strcmp(a, "-v") == 0) {
-            rp->verbose = true;
-            used_value = false;
-        } else if (strcmp(a, "--dry-run") == 0) {
-            rp->dry_run = true;
-            used_value = false;
-        } else if (strcmp(a, "--skip-errors") == 0) {
-            rp->skip_errors = true;
-            used_value = false;
-        } else if (strcmp(a, "--skip-unknown") == 0) {
-            rp->skip_unknown = true;
-            used_value = false;
-        } else if (strcmp(a, "--allow-real-bus") == 0) {
-            rp->allow_real_bus = true;
-            used_value = false;
-        } else if (strcmp(a, "--quiet") == 0) {
-            rp->quiet = true;
-            used_value = false;
-        } else if (a[0] != '-') {
-            if (add_assignment(rp, a) != 0) {
-                return -1;
-            }
-            used_value = false;
-        } else if (!takes_value(a)) {
-            fprintf(stderr, "pfe_replay: unknown option %s\n", a);
-            return -1;
-        } else if (v == NULL) {
-            fprintf(stderr, "pfe_replay: %s needs a value\n", a);
-            return -1;
-        } else if (strcmp(a, "-I") == 0) {
-            rp->path = v;
-        } else if (strcmp(a, "-l") == 0) {
-            if (strcmp(v, "i") == 0) {
-                rp->loops = 0U;
-            } else if ((parse_u64(v, 10, ULONG_MAX, &u) != 0) || (u == 0U)) {
-                fprintf(stderr, "pfe_replay: -l %s: a count of 1 or more, or i\n", v);
-                return -1;
-            } else {
-                rp->loops = (unsigned long)u;
-            }
-        } else if (strcmp(a, "-g") == 0) {
-            if ((parse_nonneg(v, &d) != 0) || (d > 3600000.0)) {
-                fprintf(stderr, "pfe_replay: -g %s: milliseconds, 0 to 3600000\n", v);
-                return -1;
-            }
-            rp->gap_ns = (int64_t)(d * 1e6);
-        } else if (strcmp(a, "-s") == 0) {
-            if ((parse_nonneg(v, &d) != 0) || (d <= 0.0)) {
-                fprintf(stderr, "pfe_replay: -s %s: seconds, more than 0\n", v);
-                return -1;
-            }
-            rp->skip_gap_us = (int64_t)(d * 1e6);
-        } else if (strcmp(a, "-n") == 0) {
-            if ((parse_u64(v, 10, UINT64_MAX, &u) != 0) || (u == 0U)) {
-                fprintf(stderr, "pfe_replay: -n %s: a count of 1 or more\n", v);
-                return -1;
-            }
-            rp->max_frames = u;
-        } else if (strcmp(a, "--speed") == 0) {
-            if ((parse_nonneg(v, &d) != 0) || (d < 0.001) || (d > 1000.0)) {
-                fprintf(stderr, "pfe_replay: --speed %s: a factor from 0.001 to 1000\n", v);
-                return -1;
-            }
-            rp->speed = d;
-        } else if (strcmp(a, "--start") == 0) {
-            if (parse_nonneg(v, &d) != 0) {
-                fprintf(stderr, "pfe_replay: --start %s: seconds, 0 or more\n", v);
-                return -1;
-            }
-            rp->start_us = (int64_t)(d * 1e6);
-        } else if (strcmp(a, "--end") == 0) {
-            if (parse_nonneg(v, &d) != 0) {
-                fprintf(stderr, "pfe_replay: --end %s: seconds, 0 or more\n", v);
-                return -1;
-            }
-            rp->end_us = (int64_t)(d * 1e6);
-        } else if (strcmp(a, "--filter") == 0) {
-            if (parse_filter(rp, v, false) != 0) {
-                return -1;
-            }
-        } else if (strcmp(a, "--pgn") == 0) {
-            if (parse_filter(rp, v, true) != 0) {
-                return -1;
-            }
-        } else if (strcmp(a, "--format") == 0) {
-            if (canlog_format_parse(v, &rp->format) != 0) {
-                fprintf(stderr, "pfe_replay: --format %s: auto, log, printed, printed-delta or asc\n",
-                        v);
-                return -1;
-            }
-        } else if (strcmp(a, "--poll-us") == 0) {
-            if ((parse_nonneg(v, &d) != 0) || (d > 1000000.0)) {
-                fprintf(stderr, "pfe_replay: --poll-us %s: microseconds, 0 to 1000000\n", v);
-                return -1;
-            }
-            rp->poll_ns = (int64_t)(d * 1e3);
-        } else if (strcmp(a, "--spin-us") == 0) {
-            if ((parse_nonneg(v, &d) != 0) || (d > 1000000.0)) {
-                fprintf(stderr, "pfe_replay: --spin-us %s: microseconds, 0 to 1000000\n", v);
-                return -1;
-            }
-            rp->spin_ns = (int64_t)(d * 1e3);
-        } else if (strcmp(a, "--tx-wait-ms") == 0) {
-            if ((parse_nonneg(v, &d) != 0) || (d > 60000.0)) {
-                fprintf(stderr, "pfe_replay: --tx-wait-ms %s: milliseconds, 0 to 60000\n", v);
-                return -1;
-            }
-            rp->tx_wait_ns = (int64_t)(d * 1e6);
-        } else {
-            return -1; /* not reached: takes_value() knows the same names */
-        }
-        if (used_value) {
-            i++;
+    const struct {
+        const char *name;
+        bool *field;
+    } flags[] = {
+        {"-t", &rp->ignore_ts},           {"-x", &rp->no_loopback},
+        {"-v", &rp->verbose},             {"--dry-run", &rp->dry_run},
+        {"--skip-errors", &rp->skip_errors}, {"--skip-unknown", &rp->skip_unknown},
+        {"--allow-real-bus", &rp->allow_real_bus}, {"--quiet", &rp->quiet},
+    };
+    for (size_t k = 0U; k < sizeof flags / sizeof flags[0]; k++) {
+        if (strcmp(a, flags[k].name) == 0) {
+            *flags[k].field = true;
+            return true;
         }
     }
+    return false;
+}
+
+/* A time option (-g, -s, --start, --end, --poll-us, --spin-us,
+ * --tx-wait-ms) with its value v: 1 when a is one and v is taken, 0 when a
+ * is none of them, -1 when v is out of the option's range (said on stderr). */
+static int set_time_option(replay_t *rp, const char *a, const char *v)
+{
+    const struct {
+        const char *name;
+        const char *range;   /* for the message */
+        bool above_zero;     /* 0 refused too */
+        double max;          /* in the option's unit; 0: none */
+        double scale;        /* from the option's unit to the field's */
+        int64_t *field;
+    } opts[] = {
+        {"-g", "milliseconds, 0 to 3600000", false, 3600000.0, 1e6, &rp->gap_ns},
+        {"-s", "seconds, more than 0", true, 0.0, 1e6, &rp->skip_gap_us},
+        {"--start", "seconds, 0 or more", false, 0.0, 1e6, &rp->start_us},
+        {"--end", "seconds, 0 or more", false, 0.0, 1e6, &rp->end_us},
+        {"--poll-us", "microseconds, 0 to 1000000", false, 1000000.0, 1e3, &rp->poll_ns},
+        {"--spin-us", "microseconds, 0 to 1000000", false, 1000000.0, 1e3, &rp->spin_ns},
+        {"--tx-wait-ms", "milliseconds, 0 to 60000", false, 60000.0, 1e6, &rp->tx_wait_ns},
+    };
+    for (size_t k = 0U; k < sizeof opts / sizeof opts[0]; k++) {
+        if (strcmp(a, opts[k].name) != 0) {
+            continue;
+        }
+        double d = 0.0;
+        if ((parse_nonneg(v, &d) != 0) || (opts[k].above_zero && (d <= 0.0)) ||
+            ((opts[k].max > 0.0) && (d > opts[k].max))) {
+            fprintf(stderr, "pfe_replay: %s %s: %s\n", a, v, opts[k].range);
+            return -1;
+        }
+        *opts[k].field = (int64_t)(d * opts[k].scale);
+        return 1;
+    }
+    return 0;
+}
+
+/* An option that takes a value (takes_value(a)) with its value v: 0, or -1
+ * with the reason on stderr. */
+static int set_option(replay_t *rp, const char *a, const char *v)
+{
+    const int timed = set_time_option(rp, a, v);
+    if (timed != 0) {
+        return (timed > 0) ? 0 : -1;
+    }
+    double d = 0.0;
+    uint64_t u = 0U;
+    if (strcmp(a, "-I") == 0) {
+        rp->path = v;
+    } else if (strcmp(a, "-l") == 0) {
+        if (strcmp(v, "i") == 0) {
+            rp->loops = 0U;
+        } else if ((parse_u64(v, 10, ULONG_MAX, &u) != 0) || (u == 0U)) {
+            fprintf(stderr, "pfe_replay: -l %s: a count of 1 or more, or i\n", v);
+            return -1;
+        } else {
+            rp->loops = (unsigned long)u;
+        }
+    } else if (strcmp(a, "-n") == 0) {
+        if ((parse_u64(v, 10, UINT64_MAX, &u) != 0) || (u == 0U)) {
+            fprintf(stderr, "pfe_replay: -n %s: a count of 1 or more\n", v);
+            return -1;
+        }
+        rp->max_frames = u;
+    } else if (strcmp(a, "--speed") == 0) {
+        if ((parse_nonneg(v, &d) != 0) || (d < 0.001) || (d > 1000.0)) {
+            fprintf(stderr, "pfe_replay: --speed %s: a factor from 0.001 to 1000\n", v);
+            return -1;
+        }
+        rp->speed = d;
+    } else if ((strcmp(a, "--filter") == 0) || (strcmp(a, "--pgn") == 0)) {
+        return parse_filter(rp, v, strcmp(a, "--pgn") == 0);
+    } else if (strcmp(a, "--format") == 0) {
+        if (canlog_format_parse(v, &rp->format) != 0) {
+            fprintf(stderr, "pfe_replay: --format %s: auto, log, printed, printed-delta or asc\n", v);
+            return -1;
+        }
+    } else {
+        return -1; /* not reached: takes_value() knows the same names */
+    }
+    return 0;
+}
+
+/* The options together: --end not before --start, -l only on a file. */
+static int check_args(const replay_t *rp)
+{
     if ((rp->end_us >= 0) && (rp->end_us < rp->start_us)) {
         fprintf(stderr, "pfe_replay: --end before --start\n");
         return -1;
@@ -960,6 +936,40 @@ static int parse_args(replay_t *rp, int argc, char **argv)
         return -1;
     }
     return 0;
+}
+
+static int parse_args(replay_t *rp, int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        if ((strcmp(a, "-h") == 0) || (strcmp(a, "--help") == 0)) {
+            usage(stdout);
+            return 1;
+        }
+        if (set_flag(rp, a)) {
+            continue;
+        }
+        if (a[0] != '-') {
+            if (add_assignment(rp, a) != 0) {
+                return -1;
+            }
+            continue;
+        }
+        if (!takes_value(a)) {
+            fprintf(stderr, "pfe_replay: unknown option %s\n", a);
+            return -1;
+        }
+        if (v == NULL) {
+            fprintf(stderr, "pfe_replay: %s needs a value\n", a);
+            return -1;
+        }
+        if (set_option(rp, a, v) != 0) {
+            return -1;
+        }
+        i++;
+    }
+    return check_args(rp);
 }
 
 /* ------------------------------------------------------------------ main */
