@@ -288,17 +288,31 @@ static const char *base_name(const char *path)
     return (s != NULL) ? s + 1 : path;
 }
 
-int main(int argc, char **argv)
-{
+typedef struct {
     const char *roads[MAX_ROADS];
-    int n_roads = 0;
-    const char *only = NULL;
-    double n = 5.0, set_kmh = 90.0, time_gap = 0.4, standstill = 0.0, length = 0.0, step = 0.1;
-    double repeat = 9.0, margin_kmh = 2.0;
-    node_spacing_t spacing = NODE_SPACING_GAP;
-    double headway_floor = 3.0;
-    int no_drag = 0;
-    int bench = 0;
+    int n_roads;
+    const char *only;       /* --only node | object, or NULL */
+    double n, set_kmh, time_gap, standstill, length, step;
+    double repeat, margin_kmh;
+    node_spacing_t spacing;
+    double headway_floor;
+    int no_drag;
+    int bench;
+} options_t;
+
+/* The command line into *o. Returns -1 to go on, else the exit status
+ * (0 after --help, 2 with the reason printed). */
+static int parse_args(int argc, char **argv, options_t *o)
+{
+    memset(o, 0, sizeof *o);
+    o->n = 5.0;
+    o->set_kmh = 90.0;
+    o->time_gap = 0.4;
+    o->step = 0.1;
+    o->repeat = 9.0;
+    o->margin_kmh = 2.0;
+    o->spacing = NODE_SPACING_GAP;
+    o->headway_floor = 3.0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
@@ -307,43 +321,43 @@ int main(int argc, char **argv)
             usage(stdout);
             return 0;
         } else if (strcmp(a, "--no-drag-reduction") == 0) {
-            no_drag = 1;
+            o->no_drag = 1;
             continue;
         } else if (strcmp(a, "--bench") == 0) {
-            bench = 1;
+            o->bench = 1;
             continue;
         } else if (v == NULL) {
             badv = 1;
         } else if (strcmp(a, "--road") == 0) {
-            if (n_roads == MAX_ROADS) {
+            if (o->n_roads == MAX_ROADS) {
                 fprintf(stderr, "platoon_compare: at most %d roads\n", MAX_ROADS);
                 return 2;
             }
-            roads[n_roads++] = v;
+            o->roads[o->n_roads++] = v;
         } else if (strcmp(a, "--only") == 0) {
-            only = v;
+            o->only = v;
             badv = (strcmp(v, "node") != 0) && (strcmp(v, "object") != 0);
         } else if (strcmp(a, "--vehicles") == 0) {
-            badv = cli_parse_double(v, 1.0, NODE_MAX_VEHICLES, &n) || (n != floor(n));
+            badv = cli_parse_double(v, 1.0, NODE_MAX_VEHICLES, &o->n) || (o->n != floor(o->n));
         } else if (strcmp(a, "--set-speed-kmh") == 0) {
-            badv = cli_parse_double(v, 5.0, 250.0, &set_kmh);
+            badv = cli_parse_double(v, 5.0, 250.0, &o->set_kmh);
         } else if (strcmp(a, "--time-gap-s") == 0) {
-            badv = cli_parse_double(v, 0.0, 10.0, &time_gap);
+            badv = cli_parse_double(v, 0.0, 10.0, &o->time_gap);
         } else if (strcmp(a, "--standstill-m") == 0) {
-            badv = cli_parse_double(v, 0.0, 100.0, &standstill);
+            badv = cli_parse_double(v, 0.0, 100.0, &o->standstill);
         } else if (strcmp(a, "--spacing") == 0) {
             badv = (strcmp(v, "gap") != 0) && (strcmp(v, "headway") != 0);
-            spacing = (strcmp(v, "headway") == 0) ? NODE_SPACING_HEADWAY : NODE_SPACING_GAP;
+            o->spacing = (strcmp(v, "headway") == 0) ? NODE_SPACING_HEADWAY : NODE_SPACING_GAP;
         } else if (strcmp(a, "--headway-floor-m") == 0) {
-            badv = cli_parse_double(v, 0.0, 100.0, &headway_floor);
+            badv = cli_parse_double(v, 0.0, 100.0, &o->headway_floor);
         } else if (strcmp(a, "--margin-kmh") == 0) {
-            badv = cli_parse_double(v, 0.0, 36.0, &margin_kmh);
+            badv = cli_parse_double(v, 0.0, 36.0, &o->margin_kmh);
         } else if (strcmp(a, "--length-m") == 0) {
-            badv = cli_parse_double(v, 0.0, 30.0, &length);
+            badv = cli_parse_double(v, 0.0, 30.0, &o->length);
         } else if (strcmp(a, "--step-s") == 0) {
-            badv = cli_parse_double(v, 0.001, 1.0, &step);
+            badv = cli_parse_double(v, 0.001, 1.0, &o->step);
         } else if (strcmp(a, "--repeat") == 0) {
-            badv = cli_parse_double(v, 1.0, MAX_REPEAT, &repeat) || (repeat != floor(repeat));
+            badv = cli_parse_double(v, 1.0, MAX_REPEAT, &o->repeat) || (o->repeat != floor(o->repeat));
         } else {
             fprintf(stderr, "platoon_compare: unknown option '%s'\n", a);
             usage(stderr);
@@ -356,165 +370,172 @@ int main(int argc, char **argv)
         }
         i++;
     }
-    if (n_roads == 0) {
+    if (o->n_roads == 0) {
         fprintf(stderr, "platoon_compare: give at least one --road FILE.csv\n");
         usage(stderr);
         return 2;
     }
-    if ((only != NULL) && (n_roads != 1)) {
+    if ((o->only != NULL) && (o->n_roads != 1)) {
         fprintf(stderr, "platoon_compare: --only takes exactly one --road\n");
         return 2;
     }
-    static node_config_t cfg;
-    node_config_default(&cfg, (unsigned)n);
-    cfg.set_speed_m_s = set_kmh / 3.6;
-    cfg.initial_speed_m_s = cfg.set_speed_m_s;
-    cfg.time_gap_s = time_gap;
-    cfg.standstill_m = standstill;
-    cfg.follow_margin_m_s = margin_kmh / 3.6;
-    cfg.length_m = length;
-    cfg.spacing = spacing;
-    cfg.headway_floor_m = headway_floor;
-    cfg.step_s = step;
-    if (no_drag) {
-        cfg.drag = &pfe_no_drag_reduction;
+    return -1;
+}
+
+/* The models' configuration from the options: 0, or 2 with the reason printed. */
+static int make_config(const options_t *o, node_config_t *cfg)
+{
+    node_config_default(cfg, (unsigned)o->n);
+    cfg->set_speed_m_s = o->set_kmh / 3.6;
+    cfg->initial_speed_m_s = cfg->set_speed_m_s;
+    cfg->time_gap_s = o->time_gap;
+    cfg->standstill_m = o->standstill;
+    cfg->follow_margin_m_s = o->margin_kmh / 3.6;
+    cfg->length_m = o->length;
+    cfg->spacing = o->spacing;
+    cfg->headway_floor_m = o->headway_floor;
+    cfg->step_s = o->step;
+    if (o->no_drag) {
+        cfg->drag = &pfe_no_drag_reduction;
     }
     char err[512];
-    if (node_config_check(&cfg, err, sizeof err) != 0) {
+    if (node_config_check(cfg, err, sizeof err) != 0) {
         fprintf(stderr, "platoon_compare: %s\n", err);
         return 2;
     }
+    return 0;
+}
 
-    static road_result_t res[MAX_ROADS];
-    static node_road_t loaded[MAX_ROADS];
-    for (int r = 0; r < n_roads; r++) {
-        if (node_road_load(roads[r], &loaded[r], err, sizeof err) != 0) {
+/* Every --road loaded, res's names set: 0, or 2 with the reason printed
+ * (nothing left loaded). */
+static int load_roads(const options_t *o, node_road_t *loaded, road_result_t *res)
+{
+    char err[512];
+    for (int r = 0; r < o->n_roads; r++) {
+        if (node_road_load(o->roads[r], &loaded[r], err, sizeof err) != 0) {
             fprintf(stderr, "platoon_compare: %s\n", err);
             for (int k = 0; k < r; k++) {
                 node_road_free(&loaded[k]);
             }
             return 2;
         }
-        res[r].path = roads[r];
-        res[r].name = base_name(roads[r]);
+        res[r].path = o->roads[r];
+        res[r].name = base_name(o->roads[r]);
     }
+    return 0;
+}
 
+/* --only: one model on the one road, for the instruction counts; frees the road. */
+static int run_only(const options_t *o, const node_config_t *cfg, node_road_t *loaded, road_result_t *res)
+{
     int status = 0;
-    if (only != NULL) {
-        model_summary_t s;
-        const int node = strcmp(only, "node") == 0;
-        const int rc = node ? run_node(&cfg, &loaded[0].road, &s) : run_object(&cfg, &loaded[0].road, false, &s);
-        if (rc != 0) {
-            fprintf(stderr, "platoon_compare: the %s model stalled on %s\n", only, roads[0]);
-            status = 1;
-        } else {
-            printf("%s N=%u %s: fuel %.4f L, time %.2f s, %lu steps, %lu truck-steps\n", only,
-                   cfg.n_vehicles, res[0].name, s.fuel_l, s.time_s, s.steps, s.evaluations);
-        }
-        node_road_free(&loaded[0]);
-        return status;
+    model_summary_t s;
+    const int node = strcmp(o->only, "node") == 0;
+    const int rc = node ? run_node(cfg, &loaded[0].road, &s) : run_object(cfg, &loaded[0].road, false, &s);
+    if (rc != 0) {
+        fprintf(stderr, "platoon_compare: the %s model stalled on %s\n", o->only, o->roads[0]);
+        status = 1;
+    } else {
+        printf("%s N=%u %s: fuel %.4f L, time %.2f s, %lu steps, %lu truck-steps\n", o->only,
+               cfg->n_vehicles, res[0].name, s.fuel_l, s.time_s, s.steps, s.evaluations);
     }
+    node_road_free(&loaded[0]);
+    return status;
+}
 
-    const int reps = (int)repeat;
-    for (int r = 0; r < n_roads && status == 0; r++) {
-        const ref_road_t *road = &loaded[r].road;
-        double t_node[MAX_REPEAT], t_obj[MAX_REPEAT];
-        for (int k = 0; k < reps; k++) {
-            double t0 = now_ms();
-            if (run_node(&cfg, road, &res[r].node) != 0) {
-                fprintf(stderr, "platoon_compare: the node model stalled on %s\n", res[r].path);
-                status = 1;
-                break;
-            }
-            t_node[k] = now_ms() - t0;
-            t0 = now_ms();
-            if (run_object(&cfg, road, false, &res[r].object) != 0) {
-                fprintf(stderr, "platoon_compare: the object model stalled on %s\n", res[r].path);
-                status = 1;
-                break;
-            }
-            t_obj[k] = now_ms() - t0;
+/* Both models on one road, reps times (the median host time kept), then,
+ * unless bench, what the tables need beyond them: trucks of length against
+ * point masses, the ref_sim cross-check, the fuel models fed one speed
+ * profile. 0, or 1 when a model stalled (said on stderr). */
+static int run_road(const node_config_t *cfg, const ref_road_t *road, int reps, int bench, road_result_t *res)
+{
+    double t_node[MAX_REPEAT], t_obj[MAX_REPEAT];
+    for (int k = 0; k < reps; k++) {
+        double t0 = now_ms();
+        if (run_node(cfg, road, &res->node) != 0) {
+            fprintf(stderr, "platoon_compare: the node model stalled on %s\n", res->path);
+            return 1;
         }
-        if (status != 0) {
-            break;
+        t_node[k] = now_ms() - t0;
+        t0 = now_ms();
+        if (run_object(cfg, road, false, &res->object) != 0) {
+            fprintf(stderr, "platoon_compare: the object model stalled on %s\n", res->path);
+            return 1;
         }
-        if ((cfg.length_m > 0.0) && !bench) {
-            for (unsigned i = 0U; i < cfg.n_vehicles; i++) {
-                res[r].truck_fuel_l[i] = g_node.fuel_l[i];
-                res[r].truck_brake_j[i] = g_node.brake_j[i];
-            }
-            static node_config_t point;
-            point = cfg;
-            point.length_m = 0.0;
-            model_summary_t unused_obj;
-            model_summary_t drag_obj;
-            if ((run_node(&point, road, &res[r].node_point) != 0) ||
-                (run_object_as(&cfg, road, false, true, &drag_obj) != 0) ||
-                (run_object(&cfg, road, true, &unused_obj) != 0)) {
-                fprintf(stderr, "platoon_compare: a model stalled on %s\n", res[r].path);
-                status = 1;
-                break;
-            }
-            res[r].object_trucks_l = unused_obj.fuel_l;
-            res[r].object_drag_l = drag_obj.fuel_l;
-            for (unsigned i = 0U; i < cfg.n_vehicles; i++) {
-                res[r].point_fuel_l[i] = g_node.fuel_l[i];
-                res[r].point_brake_j[i] = g_node.brake_j[i];
-            }
-        }
-        res[r].node_ms = median(t_node, reps);
-        res[r].object_ms = median(t_obj, reps);
-        /* The column is a cross-check: where ref_sim cannot run (more than
-         * 32 trucks) or stalls (its 10 m steps below 1 m/s), it shows nan. */
-        if (run_ref_sim(&cfg, road, &res[r].ref_fuel_l, &res[r].ref_time_s) != 0) {
-            res[r].ref_fuel_l = NAN;
-            res[r].ref_time_s = NAN;
-        }
-        const size_t n_points = (size_t)floor((node_road_length_m(road) / FED_STEP_M) + 1e-9) + 1U;
-        double *profile = bench ? NULL : malloc(n_points * sizeof *profile);
-        res[r].fed_node_l = NAN;
-        res[r].fed_object_l = NAN;
-        res[r].fed_node_set_gap_l = NAN;
-        double unused;
-        if ((profile != NULL) &&
-            ((node_mean_speed_profile(&cfg, road, FED_STEP_M, profile, n_points, &g_node) != 0) ||
-             (node_fuel_fed(&cfg, road, FED_STEP_M, profile, n_points, false, &res[r].fed_node_l,
-                            &res[r].fed_object_l) != 0) ||
-             (node_fuel_fed(&cfg, road, FED_STEP_M, profile, n_points, true, &res[r].fed_node_set_gap_l,
-                            &unused) != 0))) {
-            res[r].fed_node_l = NAN;
-            res[r].fed_object_l = NAN;
-            res[r].fed_node_set_gap_l = NAN;
-        }
-        free(profile);
+        t_obj[k] = now_ms() - t0;
     }
-    const double first_km = node_road_length_m(&loaded[0].road) / 1000.0;
-    for (int r = 0; r < n_roads; r++) {
-        node_road_free(&loaded[r]);
+    if ((cfg->length_m > 0.0) && !bench) {
+        for (unsigned i = 0U; i < cfg->n_vehicles; i++) {
+            res->truck_fuel_l[i] = g_node.fuel_l[i];
+            res->truck_brake_j[i] = g_node.brake_j[i];
+        }
+        static node_config_t point;
+        point = *cfg;
+        point.length_m = 0.0;
+        model_summary_t unused_obj;
+        model_summary_t drag_obj;
+        if ((run_node(&point, road, &res->node_point) != 0) ||
+            (run_object_as(cfg, road, false, true, &drag_obj) != 0) ||
+            (run_object(cfg, road, true, &unused_obj) != 0)) {
+            fprintf(stderr, "platoon_compare: a model stalled on %s\n", res->path);
+            return 1;
+        }
+        res->object_trucks_l = unused_obj.fuel_l;
+        res->object_drag_l = drag_obj.fuel_l;
+        for (unsigned i = 0U; i < cfg->n_vehicles; i++) {
+            res->point_fuel_l[i] = g_node.fuel_l[i];
+            res->point_brake_j[i] = g_node.brake_j[i];
+        }
     }
-    if (status != 0) {
-        return status;
+    res->node_ms = median(t_node, reps);
+    res->object_ms = median(t_obj, reps);
+    /* The column is a cross-check: where ref_sim cannot run (more than
+     * 32 trucks) or stalls (its 10 m steps below 1 m/s), it shows nan. */
+    if (run_ref_sim(cfg, road, &res->ref_fuel_l, &res->ref_time_s) != 0) {
+        res->ref_fuel_l = NAN;
+        res->ref_time_s = NAN;
     }
-    if (bench) {
-        printf("bench: object_%.0fkm_host_ms %.3f ms\n", first_km, res[0].object_ms);
-        printf("bench: node_%.0fkm_host_ms_n%u %.3f ms\n", first_km, cfg.n_vehicles, res[0].node_ms);
-        return 0;
+    const size_t n_points = (size_t)floor((node_road_length_m(road) / FED_STEP_M) + 1e-9) + 1U;
+    double *profile = bench ? NULL : malloc(n_points * sizeof *profile);
+    res->fed_node_l = NAN;
+    res->fed_object_l = NAN;
+    res->fed_node_set_gap_l = NAN;
+    double unused;
+    if ((profile != NULL) &&
+        ((node_mean_speed_profile(cfg, road, FED_STEP_M, profile, n_points, &g_node) != 0) ||
+         (node_fuel_fed(cfg, road, FED_STEP_M, profile, n_points, false, &res->fed_node_l,
+                        &res->fed_object_l) != 0) ||
+         (node_fuel_fed(cfg, road, FED_STEP_M, profile, n_points, true, &res->fed_node_set_gap_l,
+                        &unused) != 0))) {
+        res->fed_node_l = NAN;
+        res->fed_object_l = NAN;
+        res->fed_node_set_gap_l = NAN;
     }
+    free(profile);
+    return 0;
+}
 
+static void print_header(const options_t *o, const node_config_t *cfg)
+{
     printf("platoon_compare: N = %u trucks, set speed %.1f km/h, time gap %.2f s (%.2f m at the set "
            "speed), truck length %.1f m%s, followers' speed cap +%.1f km/h, %s\n",
-           cfg.n_vehicles, set_kmh, cfg.time_gap_s, node_desired_gap_m(&cfg, cfg.set_speed_m_s),
-           cfg.length_m, (cfg.length_m == 0.0) ? " (point masses, as the thesis's node model)" : "",
-           margin_kmh, no_drag ? "no drag reduction" : "drag reduction of pfe_default_drag");
-    if (cfg.spacing == NODE_SPACING_HEADWAY) {
+           cfg->n_vehicles, o->set_kmh, cfg->time_gap_s, node_desired_gap_m(cfg, cfg->set_speed_m_s),
+           cfg->length_m, (cfg->length_m == 0.0) ? " (point masses, as the thesis's node model)" : "",
+           o->margin_kmh, o->no_drag ? "no drag reduction" : "drag reduction of pfe_default_drag");
+    if (cfg->spacing == NODE_SPACING_HEADWAY) {
         printf("spacing policy: headway, %.3f s between two trucks' fronts passing a point (gap = %.3f s "
-               "v - %.1f m, at least %.1f m)\n", node_headway_s(&cfg), node_headway_s(&cfg), cfg.length_m,
-               cfg.headway_floor_m);
+               "v - %.1f m, at least %.1f m)\n", node_headway_s(cfg), node_headway_s(cfg), cfg->length_m,
+               cfg->headway_floor_m);
     } else {
-        printf("spacing policy: gap = %.1f m + %.2f s v, rear to front\n", cfg.standstill_m, cfg.time_gap_s);
+        printf("spacing policy: gap = %.1f m + %.2f s v, rear to front\n", cfg->standstill_m, cfg->time_gap_s);
     }
-    printf("both models step %.3f s of time; ref_sim steps 10 m of distance\n\n", cfg.step_s);
+    printf("both models step %.3f s of time; ref_sim steps 10 m of distance\n\n", cfg->step_s);
 
+}
+
+/* Tables 5.1 and 5.2: total fuel, and relative to the node model. */
+static void print_fuel_tables(const road_result_t *res, int n_roads)
+{
     printf("Table 5.1 analogue: total fuel [L]; the thesis's beside it (its road of that kind)\n");
     printf("%-12s %12s %14s %22s   %-10s %8s %8s\n", "road", "node model", "object model",
            "object, ref_sim 10 m", "thesis", "node", "object");
@@ -540,6 +561,11 @@ int main(int argc, char **argv)
         }
         printf("\n");
     }
+}
+
+/* Table 5.3: speeds on the road. */
+static void print_speed_table(const road_result_t *res, int n_roads)
+{
     printf("\nTable 5.3 analogue: speed on the road [km/h] (node model: mean over trucks of road "
            "length / time on it; min and max of any truck)\n");
     printf("%-14s %-12s %10s %10s %10s %10s %12s\n", "model", "road", "mean", "min", "max",
@@ -562,6 +588,11 @@ int main(int argc, char **argv)
                    t->object_kmh[1], t->object_kmh[2]);
         }
     }
+}
+
+/* Table 5.4: the fuel models fed the same speed trajectory. */
+static void print_fed_table(const road_result_t *res, int n_roads)
+{
     printf("\nTable 5.4 analogue: the fuel models fed the same speed trajectory (the node model's mean "
            "speed over its trucks, every %.0f m) and the same grades [L]\n", FED_STEP_M);
     printf("%-12s %12s %14s %10s %12s   %-10s %8s %8s %10s\n", "road", "node model", "object model",
@@ -590,14 +621,20 @@ int main(int argc, char **argv)
            "zero here: the five trucks are identical, so the aggregates lose\n"
            "  nothing; neither cause explains the thesis's +0.13 %% there, which would need what it "
            "does not tabulate (its trucks' differences, its fuel models' details).\n");
-    printf("\nNode model gaps [m] (desired %.2f m at the set speed)\n", node_desired_gap_m(&cfg, cfg.set_speed_m_s));
+}
+
+static void print_gaps(const node_config_t *cfg, const road_result_t *res, int n_roads)
+{
+    printf("\nNode model gaps [m] (desired %.2f m at the set speed)\n", node_desired_gap_m(cfg, cfg->set_speed_m_s));
     printf("%-12s %10s %10s\n", "road", "min", "max");
     for (int r = 0; r < n_roads; r++) {
         printf("%-12s %10.3f %10.3f\n", res[r].name, res[r].node.min_gap_m, res[r].node.max_gap_m);
     }
-    if (cfg.length_m > 0.0) {
-        print_length_tables(&cfg, res, n_roads);
-    }
+}
+
+/* Table 5.5: host time and work. */
+static void print_time_table(const road_result_t *res, int n_roads, int reps)
+{
     printf("\nTable 5.5 analogue: host time to simulate the road [ms] (median of %d run%s) and work "
            "[truck-steps]\n", reps, (reps == 1) ? "" : "s");
     printf("%-12s %10s %10s %8s %14s %14s %8s   %-10s %8s %8s %8s\n", "road", "node", "object", "ratio",
@@ -614,5 +651,49 @@ int main(int argc, char **argv)
         }
         printf("\n");
     }
+}
+
+int main(int argc, char **argv)
+{
+    static options_t o;
+    int status = parse_args(argc, argv, &o);
+    if (status >= 0) {
+        return status;
+    }
+    static node_config_t cfg;
+    static road_result_t res[MAX_ROADS];
+    static node_road_t loaded[MAX_ROADS];
+    if ((make_config(&o, &cfg) != 0) || (load_roads(&o, loaded, res) != 0)) {
+        return 2;
+    }
+    if (o.only != NULL) {
+        return run_only(&o, &cfg, loaded, res);
+    }
+    const int reps = (int)o.repeat;
+    status = 0;
+    for (int r = 0; r < o.n_roads && status == 0; r++) {
+        status = run_road(&cfg, &loaded[r].road, reps, o.bench, &res[r]);
+    }
+    const double first_km = node_road_length_m(&loaded[0].road) / 1000.0;
+    for (int r = 0; r < o.n_roads; r++) {
+        node_road_free(&loaded[r]);
+    }
+    if (status != 0) {
+        return status;
+    }
+    if (o.bench) {
+        printf("bench: object_%.0fkm_host_ms %.3f ms\n", first_km, res[0].object_ms);
+        printf("bench: node_%.0fkm_host_ms_n%u %.3f ms\n", first_km, cfg.n_vehicles, res[0].node_ms);
+        return 0;
+    }
+    print_header(&o, &cfg);
+    print_fuel_tables(res, o.n_roads);
+    print_speed_table(res, o.n_roads);
+    print_fed_table(res, o.n_roads);
+    print_gaps(&cfg, res, o.n_roads);
+    if (cfg.length_m > 0.0) {
+        print_length_tables(&cfg, res, o.n_roads);
+    }
+    print_time_table(res, o.n_roads, reps);
     return 0;
 }
