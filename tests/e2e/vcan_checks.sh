@@ -50,7 +50,7 @@ same_frames() {
 # cansend -> candump, candump keeping only PGN 65265 (CCVS1) from any
 # source at any priority.
 cansend_candump() {
-    candump -L -n 3 -T 10000 "$ifc,18FEF100:03FFFF00" >"$tmp/dump1" &
+    candump -L -n 3 -T 60000 "$ifc,18FEF100:03FFFF00" >"$tmp/dump1" &
     pid=$!
     wait_listening "$pid" 03ffff00 || return 1
     cansend "$ifc" 18FEF117#0011223344556677 &&
@@ -69,7 +69,7 @@ canplayer_candump() {
     printf '%s\n' "(1700000000.000000) $ifc 18FEF100#00C0160000000000" \
         "(1700000000.010000) $ifc 0CF01313#E87D" \
         "(1700000000.020000) $ifc 7FF#" >"$tmp/in.log"
-    candump -L -n 3 -T 10000 "$ifc,7FF:7FF,0CF01313:1FFFFFFF,18FEF100:1FFFFFFF" >"$tmp/dump2" &
+    candump -L -n 3 -T 60000 "$ifc,7FF:7FF,0CF01313:1FFFFFFF,18FEF100:1FFFFFFF" >"$tmp/dump2" &
     pid=$!
     wait_listening "$pid" 1fffffff || return 1
     canplayer -I "$tmp/in.log" || { kill "$pid"; return 1; }
@@ -81,7 +81,7 @@ $ifc 7FF#"
 
 # cangen -> candump: 50 random frames, all of them received.
 cangen_candump() {
-    candump -L -n 50 -T 10000 "$ifc,0:0" >"$tmp/dump3" &
+    candump -L -n 50 -T 60000 "$ifc,0:0" >"$tmp/dump3" &
     pid=$!
     wait_listening "$pid" "$ifc  *000  *00000000" || return 1
     cangen "$ifc" -n 50 -g 1 || { kill "$pid"; return 1; }
