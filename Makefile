@@ -1,44 +1,54 @@
 # Platoon fuel-prediction module: firmware, host tools, tests.
 #
 #   make            host tools (build/host/)
-#   make run        the module on vcan fed the bundled hilly drive, judged: summary, CSV, plot
-#   make run-sim    simulate the bundled hilly road, fixed point against double
-#   make test       every test: host (ASan, UBSan), Cortex-M4 under QEMU, image checks
-#   make firmware   the Cortex-M4 image for QEMU's mps2-an386 (build/m4/)
-#   make bench      figures: instructions, memory, accuracy (bench: lines)
-#   make help       this list
+#   make test       every test
+#   make help       every public target, one line each (the "## " comment
+#                   above each target in this file and mk/*.mk)
 #
 # Missing Debian packages are installed on first use (scripts/deps.sh).
+# Host programs and tests are built from the templates of mk/host.mk, the
+# Cortex-M4 images and tests from those of mk/m4.mk. Tests are named test-*.
 
 BUILD ?= build
 HOST_CC ?= gcc
 HOST := $(BUILD)/host
 HOSTSAN := $(BUILD)/host-san
-ROADS := sim_host/roads
+HOSTSTATIC := $(BUILD)/host-static
+ROADS := sim_host/data/roads
 ROAD_NAMES := flat uphill hilly
 
 WARN := -std=c11 -Wall -Wextra -Werror -Wconversion -Wsign-conversion -Wshadow \
         -Wdouble-promotion -Wstrict-prototypes -Wundef -Wcast-qual -Wpointer-arith
+# Project headers by their path: "firmware/x.h", "hal/x.h", and the host
+# tools' "lib/x.h", "ref/x.h" (sim_host/); tests also name firmware headers alone.
+HOST_INC := -I. -Isim_host -Ifirmware
 SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-HOST_CFLAGS := $(WARN) -O2 -g
-SAN_CFLAGS := $(WARN) -O1 -g $(SAN)
+HOST_CFLAGS := $(WARN) $(HOST_INC) -O2 -g
+SAN_CFLAGS := $(WARN) $(HOST_INC) -O1 -g $(SAN)
+STATIC_CFLAGS := $(WARN) $(HOST_INC) -O2
 
 FW_SRC := $(sort $(wildcard firmware/*.c))
 FW_HDR := $(sort $(wildcard firmware/*.h))
-REF_SRC := sim_host/ref_model.c sim_host/sim_compare.c sim_host/road_csv.c sim_host/drive_trace.c
-SIM_HDR := $(sort $(wildcard sim_host/*.h))
+REF_SRC := sim_host/ref/ref_model.c sim_host/ref/sim_compare.c sim_host/lib/road_csv.c sim_host/ref/drive_trace.c
+SIM_HDR := $(sort $(wildcard sim_host/*/*.h sim_host/*/*/*.h))
+# The one CAN log reader of the host tools (sim_host/lib/log/log.h).
+LOG_SRC := $(sort $(wildcard sim_host/lib/log/*.c))
+LOG_HDR := $(sort $(wildcard sim_host/lib/log/*.h))
 UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
 
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all tools deps run test test-host test-m4 firmware bench bench-figures test-bench-check help clean check-image \
-        check-selfcheck check-replay e2e-test bus-fault-test check-asserts
+.PHONY: all tools deps run test test-host test-m4 firmware bench bench-figures test-bench-check help clean test-image \
+        test-selfcheck test-replay-m4 test-e2e test-bus-faults test-asserts
 .DEFAULT_GOAL := all
 
 all: tools
 
+## this list: every public target, one line each
 help:
-	@sed -n '3,11p' Makefile | sed 's/^# \{0,1\}//'
+	@awk '/^## / { d = substr($$0, 4); next } \
+	    /^[a-z][a-zA-Z0-9_-]*:/ && d != "" { t = $$0; sub(/:.*/, "", t); printf "  %-24s %s\n", t, d } \
+	    { d = "" }' $(MAKEFILE_LIST)
 
 # ---------------------------------------------------------------- set-up
 
@@ -47,103 +57,63 @@ $(DEPS_STAMP): scripts/deps.sh
 	sh scripts/deps.sh
 	@touch $@
 
+## install the Debian packages the build needs (scripts/deps.sh; also done on first use)
 deps: $(DEPS_STAMP)
 
 # ---------------------------------------------------------------- host tools
 
-TOOLS := $(HOST)/platoon_sim $(HOST)/roadgen $(HOST)/road2c $(HOST)/pfe_ecu $(HOST)/pfe_ecu_replay \
-         $(HOST)/sensitivity $(HOST)/drivegen $(HOST)/pfe_record $(HOST)/run_report \
-         $(HOST)/pfe_replay $(HOST)/pfe_decode $(HOST)/platoon_compare $(HOST)/route_choice \
-         $(HOST)/routegen
-tools: $(TOOLS)
-
-$(HOST)/platoon_sim: sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/platoon_sim.c $(FW_SRC) $(REF_SRC) -lm
+include mk/host.mk
 
 # The module as a Linux process on SocketCAN (hal/socketcan, hal/posix).
 ECU_LOOP_SRC := hal/hal_ecu_loop.c
-# The truck calibration file (--calib) of the host tools that run the model.
-TRUCK_CAL_SRC := sim_host/truck_cal.c
-ECU_HOST_SRC := sim_host/ecu_main.c $(ECU_LOOP_SRC) hal/socketcan/hal_socketcan.c \
-    hal/posix/hal_nvm_file.c hal/posix/hal_time_posix.c $(TRUCK_CAL_SRC)
-HAL_HDR := $(sort $(wildcard hal/*.h hal/*/*.h))
-$(HOST)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
-
+ECU_HOST_HAL := $(ECU_LOOP_SRC) hal/socketcan/hal_socketcan.c hal/posix/hal_nvm_file.c \
+    hal/posix/hal_time_posix.c
+# The in-memory backends: the test bus (hal/fake) and the replayed log (hal/replay).
+HAL_FAKE_SRC := hal/fake/hal_fake.c hal/hal_can_mem_api.c hal/hal_can_mem.c
+HAL_REPLAY_SRC := hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c
 # The same firmware over a log in logical time (hal/replay); its twin on the
-# Cortex-M4 is $(M4_OUT)/pfe_ecu_mps2.elf.
-ECU_REPLAY_SRC := $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/replay/hal_replay_ecu.c
-# The host reads the log through sim_host/canlog.c (every form), the image
-# through hal/replay's own parser.
-REPLAY_SOURCE_SRC := sim_host/replay_source.c sim_host/canlog.c
-$(HOST)/pfe_ecu_replay: sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(REPLAY_SOURCE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_replay.c $(ECU_REPLAY_SRC) $(REPLAY_SOURCE_SRC) $(TRUCK_CAL_SRC) $(FW_SRC)
+# Cortex-M4 is $(M4_OUT)/pfe_ecu_mps2.elf. The host reads the log through
+# sim_host/lib/log/ (every form), the image through hal/replay's own parser.
+ECU_REPLAY_SRC := $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/hal_can_mem_api.c \
+    hal/replay/hal_replay_ecu.c
+HAL_HDR := $(sort $(wildcard hal/*.h hal/*/*.h))
 
-$(HOST)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -o $@ $< -lm
+# One file per program (sim_host/tools/NAME.c builds NAME), with the HAL
+# sources it runs on; sim_host/lib, sim_host/ref and the firmware come from
+# the archives (mk/host.mk).
+TOOL_NAMES := $(sort $(notdir $(basename $(wildcard sim_host/tools/*.c))))
+$(foreach t,$(filter-out pfe_ecu pfe_ecu_replay pfe_faults pfe_replay,$(TOOL_NAMES)),$(call host_program,$(t)))
+$(call host_program,pfe_ecu,sim_host/tools/pfe_ecu.c $(ECU_HOST_HAL))
+$(call host_program,pfe_ecu_replay,sim_host/tools/pfe_ecu_replay.c $(ECU_REPLAY_SRC))
+$(call host_program,pfe_faults,sim_host/tools/pfe_faults.c $(HAL_REPLAY_SRC))
+$(call host_program,pfe_replay,sim_host/tools/pfe_replay.c hal/socketcan/hal_socketcan.c)
+# Test and benchmark programs that are not tools.
+$(call host_program,lateness_check,tests/e2e/lateness_check.c)
+$(call host_program,slcan_run,tests/e2e/slcan_run.c)
+$(call host_program,biglog_gen,tests/bench/biglog_gen.c)
+$(call host_program,bench_time,tests/bench/bench_time.c)
+$(call host_program,host_bench,tests/bench/host_bench.c)
 
-$(HOST)/road2c: sim_host/road2c.c sim_host/road_csv.c sim_host/road_csv.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Isim_host -o $@ sim_host/road2c.c sim_host/road_csv.c -lm
+TOOLS := $(addprefix $(HOST)/,$(TOOL_NAMES))
+## every host tool (build/host/), one per file of sim_host/tools/
+tools: $(TOOLS)
 
 # ---------------------------------------------------------------- host tests (ASan, UBSan)
 
 # Unit tests: the firmware plus the test backend (hal/fake), nothing else.
-UNIT_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem.c
-
-# Headers of the tests themselves (value-printing asserts, the ECU harness).
-TEST_HDR := tests/test_assert.h $(sort $(wildcard tests/unit/*.h))
-
-$(HOSTSAN)/unit_%: tests/unit/%.c $(UNIT_SRC) $(FW_HDR) $(HAL_HDR) $(TEST_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(UNIT_SRC) -lcmocka
-
-$(HOSTSAN)/test_accuracy: tests/host/test_accuracy.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(FW_SRC) $(REF_SRC) -lcmocka -lm
-
-$(HOSTSAN)/test_road_csv: tests/host/test_road_csv.c sim_host/road_csv.c sim_host/road_csv.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Isim_host -o $@ $< sim_host/road_csv.c -lcmocka -lm
-
-# The module's prediction over a preview against the double-precision model.
-$(HOSTSAN)/test_predict: tests/host/test_predict.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(FW_SRC) $(REF_SRC) -lcmocka -lm
-
-# The identification against its double-precision reference and the
-# reference model's truth (sim_host/identify_ref).
-$(HOSTSAN)/test_identify_ref: tests/host/test_identify_ref.c sim_host/identify_ref.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/identify_ref.c $(FW_SRC) $(REF_SRC) -lcmocka -lm
-
-# Every codec signal checked against can_dbc/pfe.dbc, and the other way round.
-$(HOSTSAN)/test_dbc_codec: tests/host/test_dbc_codec.c sim_host/dbc.c sim_host/dbc.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/dbc.c $(FW_SRC) -lcmocka -lm
-
-# The HAL conformance suite on the test backend (on SocketCAN: mk/vcan.mk).
-$(HOSTSAN)/test_hal_fake: tests/hal/test_hal_fake.c tests/hal/hal_conformance.c hal/fake/hal_fake.c hal/hal_can_mem.c $(HAL_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
-
-# The ECU's main loop on the test backend: what a late pass takes.
-$(HOSTSAN)/test_ecu_loop: tests/hal/test_ecu_loop.c hal/hal_ecu_loop.c hal/fake/hal_fake.c hal/hal_can_mem.c $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
-
-# ... and on the replay backend, with the backend's own tests.
-$(HOSTSAN)/test_hal_replay: tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem.c $(HAL_HDR) tests/replay/log_vectors.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(filter %.c,$^) -lcmocka
-
-$(HOSTSAN)/roadgen: sim_host/roadgen.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -o $@ $< -lm
+UNIT_SRC := $(FW_SRC) $(HAL_FAKE_SRC)
+$(foreach t,$(UNIT_TESTS),$(call host_test,unit_$(t),tests/unit/$(t).c $(HAL_FAKE_SRC)))
+# tests/host/NAME.c alone over the archives.
+HOST_TESTS := test_accuracy test_road_csv test_predict test_identify_ref test_dbc_codec test_canlog \
+    test_capture test_truck_cal test_sensitivity test_node_model test_fuel_bounds test_road_import
+$(foreach t,$(HOST_TESTS),$(call host_test,$(t),tests/host/$(t).c))
+$(call host_test,ecu_offline,tests/host/ecu_offline.c)
+$(call host_test,test_nvm_faults,tests/host/test_nvm_faults.c $(ECU_LOOP_SRC) $(HAL_FAKE_SRC))
+# The HAL conformance suite on the test backend (on SocketCAN: mk/vcan.mk),
+# and on the replay backend, with the backend's own tests.
+$(call host_test,test_hal_fake,tests/hal/test_hal_fake.c tests/hal/hal_conformance.c $(HAL_FAKE_SRC))
+$(call host_test,test_ecu_loop,tests/hal/test_ecu_loop.c $(ECU_LOOP_SRC) $(HAL_FAKE_SRC))
+$(call host_test,test_hal_replay,tests/hal/test_hal_replay.c tests/hal/hal_conformance.c $(HAL_REPLAY_SRC))
 
 HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_accuracy \
                   $(HOSTSAN)/test_road_csv $(HOSTSAN)/roadgen $(HOSTSAN)/test_dbc_codec \
@@ -153,15 +123,15 @@ HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_ac
 # No assert compares without printing the values (scripts/check_asserts.py
 # over tests/); the check shown to fail on planted comparisons and the
 # asserts of tests/test_assert.h shown to print them (tests/asserts/).
-$(HOSTSAN)/test_assert_demo: tests/asserts/test_assert_demo.c tests/test_assert.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -o $@ $< -lcmocka
+$(call host_test,test_assert_demo,tests/asserts/test_assert_demo.c)
 
-check-asserts: $(HOSTSAN)/test_assert_demo
+## no bare comparison in a test's assert (scripts/check_asserts.py), the check shown to catch planted ones
+test-asserts: $(HOSTSAN)/test_assert_demo
 	@echo "== host: no bare comparison in an assert"; python3 scripts/check_asserts.py tests
 	@sh tests/asserts/check_asserts_test.sh $(HOSTSAN)/test_assert_demo
 
-test-host: $(HOST_TEST_BINS) check-asserts
+## host tests under ASan and UBSan: firmware units, accuracy, prediction, road loader, codec against the DBC, HAL conformance, the ECU loop, the asserts check
+test-host: $(HOST_TEST_BINS) test-asserts
 	@set -e; for t in $(UNIT_TESTS); do echo "== host unit: $$t"; $(HOSTSAN)/unit_$$t; done
 	@echo "== host: test_accuracy"; $(HOSTSAN)/test_accuracy $(ROADS)
 	@echo "== host: test_predict"; $(HOSTSAN)/test_predict $(ROADS)
@@ -209,10 +179,11 @@ $(call m4_image,pfe_bench,$(FW_SRC) tests/bench/m4_bench.c $(GEN)/road_hilly.c)
 # The firmware's unit tests, cross-compiled.
 $(foreach t,$(UNIT_TESTS),$(call m4_test,unit_$(t),$(UNIT_SRC) tests/unit/$(t).c))
 # The replay backend the image runs drives on, conformance suite included.
-$(call m4_test,test_hal_replay,tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem.c)
+$(call m4_test,test_hal_replay,tests/hal/test_hal_replay.c tests/hal/hal_conformance.c hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c)
 
 FIRMWARE_ELF := $(M4_OUT)/pfe_mps2.elf
 
+## the Cortex-M4 image for QEMU's mps2-an386 (build/m4/pfe_mps2.elf); CALIB=FILE adds the replay image for that truck
 firmware: $(DEPS_STAMP) $(FIRMWARE_ELF)
 	@$(M4_SIZE) $(FIRMWARE_ELF)
 
@@ -222,16 +193,18 @@ $(M4_OUT)/test_bad_image_float.elf: $(M4_OUT)/obj/image/tests/m4/bad_image_float
         $(call m4__objs,image,$(M4_HAL_IMAGE_SRCS))
 	$(M4_CC) $(filter %.o,$^) $(M4_LDFLAGS_IMAGE) -o $@
 
-check-image: $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf $(M4_OUT)/pfe_bench.elf \
-        $(M4_OUT)/test_bad_image_float.elf stm32-check-image
+## the images refused if they link the heap or floating point (and a floating-point image refused, as it should be)
+test-image: $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf $(M4_OUT)/pfe_bench.elf \
+        $(M4_OUT)/test_bad_image_float.elf test-stm32-image
 	$(M4_CHECK) $(FIRMWARE_ELF)
 	$(M4_CHECK) $(M4_OUT)/pfe_ecu_mps2.elf
 	$(M4_CHECK) $(M4_OUT)/pfe_bench.elf
 	@if $(M4_CHECK) $(M4_OUT)/test_bad_image_float.elf >$(BUILD)/bad_image.txt 2>&1; then \
-	    echo "check-image: a floating-point image passed the check"; exit 1; fi
+	    echo "test-image: a floating-point image passed the check"; exit 1; fi
 	@grep -q __aeabi_f $(BUILD)/bad_image.txt && \
-	    echo "check-image: refuses an image with floating point, as it should"
+	    echo "test-image: refuses an image with floating point, as it should"
 
+## the firmware's unit tests and the replay backend's conformance on the Cortex-M4 under QEMU
 test-m4: $(DEPS_STAMP) $(addprefix $(M4_OUT)/unit_,$(addsuffix .elf,$(UNIT_TESTS))) \
         $(M4_OUT)/test_hal_replay.elf
 	@set -e; for t in $(UNIT_TESTS); do echo "== Cortex-M4 unit: $$t"; \
@@ -239,11 +212,9 @@ test-m4: $(DEPS_STAMP) $(addprefix $(M4_OUT)/unit_,$(addsuffix .elf,$(UNIT_TESTS
 	@echo "== Cortex-M4: HAL conformance on hal/replay"; $(M4_RUN) $(M4_OUT)/test_hal_replay.elf
 
 # Same inputs, bit-identical outputs on the host and on the Cortex-M4.
-$(HOST)/selfcheck: sim_host/selfcheck.c sim_host/road_csv.c $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/selfcheck.c sim_host/road_csv.c $(FW_SRC) -lm
 
-check-selfcheck: $(HOST)/selfcheck $(FIRMWARE_ELF)
+## the self-check on the host and on the Cortex-M4: identical outputs
+test-selfcheck: $(HOST)/selfcheck $(FIRMWARE_ELF)
 	$(HOST)/selfcheck $(ROADS)/hilly.csv > $(BUILD)/selfcheck_host.txt
 	$(M4_RUN) $(FIRMWARE_ELF) > $(BUILD)/selfcheck_m4.txt
 	@grep -q digest $(BUILD)/selfcheck_host.txt
@@ -257,16 +228,7 @@ check-selfcheck: $(HOST)/selfcheck $(FIRMWARE_ELF)
 # curve, then 750 m at 2 %, 90 km/h) by canplayer, recorded by candump, judged
 # by ecu_check.
 E2E_PAYLOAD := $(BUILD)/e2e/payload
-E2E_STATIC := -static -O2
-$(E2E_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
-$(E2E_PAYLOAD)/ecu_check: sim_host/ecu_check.c $(CAPTURE_SRC) $(CAPTURE_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
-$(HOST)/drivegen: sim_host/drivegen.c sim_host/drive_trace.c $(REF_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/drivegen.c $(REF_SRC) $(TRUCK_CAL_SRC) $(FW_SRC) -lm
+$(call host_payload,$(E2E_PAYLOAD),pfe_ecu ecu_check pfe_faults)
 $(E2E_PAYLOAD)/drive.log: $(HOST)/drivegen Makefile
 	@mkdir -p $(@D)
 	$(HOST)/drivegen --segment 600:0 --segment 50:0.5 --segment 50:1 --segment 50:1.5 \
@@ -275,24 +237,13 @@ $(E2E_PAYLOAD)/ecu_vcan.sh: tests/e2e/ecu_vcan.sh
 	@mkdir -p $(@D)
 	cp $< $@
 
-$(E2E_PAYLOAD)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(E2E_STATIC) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
 $(E2E_PAYLOAD)/faults.log: $(HOST)/pfe_faults $(E2E_PAYLOAD)/drive.log
 	$(HOST)/pfe_faults inject $(E2E_PAYLOAD)/drive.log $@
 
 # Bus faults in the real kernel: vcan0 down and up, a flood, an address
 # conflict, during a drive (tests/e2e/bus_faults.sh).
 FAULTS_PAYLOAD := $(BUILD)/bus-faults/payload
-$(FAULTS_PAYLOAD)/pfe_ecu: $(E2E_PAYLOAD)/pfe_ecu
-	@mkdir -p $(@D)
-	cp $< $@
-$(FAULTS_PAYLOAD)/pfe_replay: $(REPLAY_PAYLOAD)/pfe_replay
-	@mkdir -p $(@D)
-	cp $< $@
-$(FAULTS_PAYLOAD)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) sim_host/dbc.c sim_host/dbc.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(WARN) $(E2E_STATIC) -Wno-maybe-uninitialized -I. -o $@ $(DECODE_SRC) sim_host/dbc.c -lm
+$(call host_payload,$(FAULTS_PAYLOAD),pfe_ecu pfe_replay pfe_decode)
 $(FAULTS_PAYLOAD)/pfe.dbc: can_dbc/pfe.dbc
 	@mkdir -p $(@D)
 	cp $< $@
@@ -303,51 +254,49 @@ $(FAULTS_PAYLOAD)/bus_faults.sh: tests/e2e/bus_faults.sh
 	@mkdir -p $(@D)
 	cp $< $@
 
-bus-fault-test: $(addprefix $(FAULTS_PAYLOAD)/,pfe_ecu pfe_replay pfe_decode pfe.dbc drive.log bus_faults.sh)
+## bus faults in the VM's kernel: vcan0 down and up, a flood, an address conflict, during a drive
+test-bus-faults: $(addprefix $(FAULTS_PAYLOAD)/,pfe_ecu pfe_replay pfe_decode pfe.dbc drive.log bus_faults.sh)
 	$(VCAN_VM) --time --timeout 900 --payload $(abspath $(FAULTS_PAYLOAD)) -- \
 	    sh $(abspath $(FAULTS_PAYLOAD))/bus_faults.sh
 
-e2e-test: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log faults.log ecu_vcan.sh)
+## the host ECU on vcan in the VM, fed a drive by canplayer, recorded by candump, judged by ecu_check
+test-e2e: $(addprefix $(E2E_PAYLOAD)/,pfe_ecu ecu_check pfe_faults drive.log faults.log ecu_vcan.sh)
 	$(VCAN_VM) --time --timeout 1200 --payload $(abspath $(E2E_PAYLOAD)) -- \
 	    sh $(abspath $(E2E_PAYLOAD))/ecu_vcan.sh
 
 # One log through the firmware on the host and in the Cortex-M4 image, in
 # the log's time: identical records; then judged (tests/replay/host_vs_m4.sh).
-$(HOST)/ecu_check: sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/ecu_check.c $(CAPTURE_SRC) $(FW_SRC) -lm
-$(HOST)/pfe_faults: sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC) $(FW_HDR) $(HAL_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/fault_check.c hal/replay/hal_replay.c hal/hal_can_mem.c $(REPLAY_SOURCE_SRC) $(FW_SRC)
 
-check-replay: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_OUT)/pfe_ecu_mps2.elf \
+## one log through the firmware on the host and in the Cortex-M4 image: identical records, then judged
+test-replay-m4: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4_OUT)/pfe_ecu_mps2.elf \
         $(E2E_PAYLOAD)/drive.log $(BUILD)/logs/hilly.log
 	sh tests/replay/host_vs_m4.sh $(BUILD)/replay $(HOST) $(M4_OUT)/pfe_ecu_mps2.elf \
 	    $(E2E_PAYLOAD)/drive.log $(BUILD)/logs/hilly.log
 
-test: test-host test-m4 check-selfcheck check-replay check-image m4-selftest vcan-test e2e-test \
-      test-sensitivity test-run-host test-drive-logs test-record-vm replay-test replay-vcan-test \
-      thesis-test test-hardening bus-fault-test fuzz-smoke test-bench-check test-truck-cal \
-      test-foreign-trucks check-replay-calib test-stm32 test-road-import \
+## every test: host (ASan, UBSan), Cortex-M4 under QEMU, images, vcan VM, fuzzing smoke, MISRA, coverage, stack
+test: test-host test-m4 test-selfcheck test-replay-m4 test-image test-m4-selftest test-vcan test-e2e \
+      test-sensitivity test-run-host test-drive-logs test-record-vm test-replay test-replay-vcan \
+      test-thesis test-hardening test-bus-faults test-fuzz-smoke test-bench-check test-truck-cal \
+      test-foreign-trucks test-replay-calib test-stm32 test-road-import \
       test-nvm-faults test-san
 
+## the bench checker against made-up figures (tests/bench/bench_check_test.sh)
 test-bench-check:
 	@sh tests/bench/bench_check_test.sh
 
 # ---------------------------------------------------------------- benchmarks
 
-$(HOST)/host_bench: tests/bench/host_bench.c $(FW_SRC) $(REF_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ $< $(FW_SRC) $(REF_SRC) -lm
 
 # Every figure, then the targets of tests/bench/targets.txt held to them
 # (a figure above its limit, or missing, fails the bench).
+## every figure (bench: lines), held to the limits of tests/bench/targets.txt
 bench:
 	@mkdir -p $(BUILD)
 	@{ $(MAKE) --no-print-directory bench-figures; echo "bench-exit $$?"; } | tee $(BUILD)/bench.out
 	@grep -qx 'bench-exit 0' $(BUILD)/bench.out
 	@sh scripts/bench_check.sh tests/bench/targets.txt $(BUILD)/bench.out
 
+## the figures alone, not held to their limits
 bench-figures: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF) $(M4_OUT)/pfe_ecu_mps2.elf \
         $(E2E_PAYLOAD)/drive.log replay-bench thesis-bench foreign-bench stm32-bench
 	@$(M4_RUN) $(M4_OUT)/pfe_bench.elf
@@ -363,5 +312,31 @@ bench-figures: $(HOST)/host_bench $(M4_OUT)/pfe_bench.elf $(FIRMWARE_ELF) $(M4_O
 	    awk '/heap/ { n += $$2 } END { print n + 0 }') bytes"
 	@$(HOST)/host_bench $(ROADS)
 
+## remove the build folder
 clean:
 	rm -rf $(BUILD)
+
+# ---------------------------------------------------------------- old names
+
+# Names of tests before the test-* scheme, kept because the README uses them.
+.PHONY: check-image check-replay check-replay-calib e2e-test bus-fault-test fuzz-smoke replay-test replay-vcan-test thesis-test vcan-test
+## old name of test-image
+check-image: test-image
+## old name of test-replay-m4
+check-replay: test-replay-m4
+## old name of test-replay-calib
+check-replay-calib: test-replay-calib
+## old name of test-e2e
+e2e-test: test-e2e
+## old name of test-bus-faults
+bus-fault-test: test-bus-faults
+## old name of test-fuzz-smoke
+fuzz-smoke: test-fuzz-smoke
+## old name of test-replay
+replay-test: test-replay
+## old name of test-replay-vcan
+replay-vcan-test: test-replay-vcan
+## old name of test-thesis
+thesis-test: test-thesis
+## old name of test-vcan
+vcan-test: test-vcan

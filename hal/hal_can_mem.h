@@ -43,4 +43,13 @@ int hal_can_mem_port_receive(hal_can_mem_port_t *port, hal_can_rx_t *out);
 int hal_can_mem_port_add_filter(hal_can_mem_port_t *port, uint32_t id, uint32_t mask);
 int hal_can_mem_port_remove_filter(hal_can_mem_port_t *port, int index);
 
+/*
+ * The in-memory backends (hal/fake, hal/replay) share hal_can_receive(),
+ * hal_can_add_filter() and hal_can_remove_filter() (hal/hal_can_mem_api.c),
+ * each built on the handle's port: a backend linking that file defines
+ * this one function, which gives its handle's port (can is not NULL) and
+ * whether the handle is open.
+ */
+hal_can_mem_port_t *hal_can_mem_port_of(hal_can_t *can, bool *open);
+
 #endif /* HAL_CAN_MEM_H */

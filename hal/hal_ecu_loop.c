@@ -56,18 +56,17 @@ int hal_ecu_loop_init(hal_ecu_loop_t *loop, pfe_ecu_t *ecu, const pfe_ecu_config
 uint32_t hal_ecu_loop_step(hal_ecu_loop_t *loop, uint64_t now_us)
 {
     pfe_ecu_t *ecu = loop->ecu;
-    for (uint32_t k = 0U; k < HAL_ECU_LOOP_RX_MAX; k++) {
+    /* A frame received after this deadline belongs to a later pass. */
+    bool more = true;
+    for (uint32_t k = 0U; more && (k < HAL_ECU_LOOP_RX_MAX); k++) {
         if (!loop->have_held) {
-            if (hal_can_receive(loop->can, &loop->held) != 0) {
-                break;
-            }
-            loop->have_held = true;
+            loop->have_held = hal_can_receive(loop->can, &loop->held) == 0;
         }
-        if (loop->held.timestamp_us > now_us) {
-            break; /* received after this deadline: it belongs to a later pass */
+        more = loop->have_held && (loop->held.timestamp_us <= now_us);
+        if (more) {
+            loop->have_held = false;
+            pfe_ecu_receive(ecu, &loop->held.frame, now_us);
         }
-        loop->have_held = false;
-        pfe_ecu_receive(ecu, &loop->held.frame, now_us);
     }
     hal_can_stats_t st;
     hal_can_get_stats(loop->can, &st);

@@ -1,7 +1,7 @@
 /*
  * hal_ecu_loop.h - the ECU's main loop over the HAL, the same for every
- * backend: the Linux process on SocketCAN (sim_host/ecu_main.c), a replay of
- * a log on the host (sim_host/ecu_replay.c) and on the emulated Cortex-M4
+ * backend: the Linux process on SocketCAN (sim_host/tools/pfe_ecu.c), a replay of
+ * a log on the host (sim_host/tools/pfe_ecu_replay.c) and on the emulated Cortex-M4
  * (hal/mps2/main_ecu.c). Because they share this code, a replay on the host
  * and on the Cortex-M4 must send the same frames.
  *

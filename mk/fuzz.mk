@@ -8,7 +8,7 @@
 #   fuzz          each target for FUZZ_SECONDS, after its regression inputs;
 #                 one summary line each (runs, libFuzzer's cov and ft, corpus,
 #                 crashes)
-#   fuzz-smoke    the same for FUZZ_SMOKE_SECONDS each (part of `make test`)
+#   test-fuzz-smoke    the same for FUZZ_SMOKE_SECONDS each (part of `make test`)
 #   fuzz-build    the targets only, in $(FUZZ_OUT)/
 #   fuzz-seeds    rewrites the committed seeds (tests/fuzz/corpus/) from the
 #                 bundled logs (tests/fuzz/make_seeds.sh)
@@ -17,16 +17,16 @@
 # NAME and the inputs of every crash found, replayed first, in
 # tests/fuzz/regress/NAME:
 #   ecu      frame sequences and time steps into pfe_ecu (firmware/)
-#   canlog   sim_host/canlog.c: candump log, candump printed, Vector ASC
+#   canlog   sim_host/lib/log/: candump log, candump printed, Vector ASC
 #   replay   hal/replay/hal_replay.c: the replay bus's candump parser
-#   capture  sim_host/capture.c: the capture reader
-#   dbc      sim_host/dbc.c, seeded with can_dbc/pfe.dbc
+#   capture  sim_host/lib/capture.c: the capture reader
+#   dbc      sim_host/lib/dbc.c, seeded with can_dbc/pfe.dbc
 #   nvm      firmware/pfe_nvm.c: pfe_nvm_decode, pfe_nvm_pick, and the ECU
 #            started from the record picked
 #
 # Variables:
 #   FUZZ_SECONDS        per target for `make fuzz` (60)
-#   FUZZ_SMOKE_SECONDS  per target for `make fuzz-smoke` (12)
+#   FUZZ_SMOKE_SECONDS  per target for `make test-fuzz-smoke` (12)
 #   FUZZ_TARGETS        the targets to run (all of the above)
 #   FUZZ_CC             clang (Debian's clang 14, libFuzzer from libclang-rt-14-dev)
 #   FUZZ_OUT            $(BUILD)/fuzz: binaries, growing corpora, crashes, logs
@@ -37,37 +37,32 @@ FUZZ_TARGETS ?= ecu canlog replay capture dbc nvm
 FUZZ_CC ?= clang
 FUZZ_OUT ?= $(BUILD)/fuzz
 FUZZ_PACKAGES := clang libclang-rt-14-dev
-FUZZ_CFLAGS := $(WARN) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+FUZZ_CFLAGS := $(WARN) $(HOST_INC) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
                -fno-omit-frame-pointer
 FUZZ_DEPS := $(FUZZ_OUT)/.deps-ok
 FUZZ_HDR := tests/fuzz/fuzz_check.h
 
-.PHONY: fuzz fuzz-smoke fuzz-build fuzz-seeds
+.PHONY: fuzz test-fuzz-smoke fuzz-build fuzz-seeds
 
 $(FUZZ_DEPS): scripts/deps.sh
 	@mkdir -p $(@D)
 	sh scripts/deps.sh $(FUZZ_PACKAGES)
 	@touch $@
 
-$(FUZZ_OUT)/fuzz_ecu: tests/fuzz/fuzz_ecu.c $(FUZZ_HDR) $(FW_SRC) $(FW_HDR) | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< $(FW_SRC)
+# $(call fuzz_target,NAME,SOURCES): $(FUZZ_OUT)/fuzz_NAME from tests/fuzz/fuzz_NAME.c
+# and SOURCES, compiled whole by clang (the libFuzzer flags on every file).
+define fuzz__target
+$(FUZZ_OUT)/fuzz_$(1): tests/fuzz/fuzz_$(1).c $(2) $(FUZZ_HDR) $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(FUZZ_DEPS)
+	$$(FUZZ_CC) $$(FUZZ_CFLAGS) -o $$@ $$(filter %.c,$$^) -lm
+endef
+fuzz_target = $(eval $(call fuzz__target,$(1),$(2)))
 
-$(FUZZ_OUT)/fuzz_nvm: tests/fuzz/fuzz_nvm.c $(FUZZ_HDR) $(FW_SRC) $(FW_HDR) | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< $(FW_SRC)
-
-$(FUZZ_OUT)/fuzz_canlog: tests/fuzz/fuzz_canlog.c $(FUZZ_HDR) sim_host/canlog.c sim_host/canlog.h | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/canlog.c
-
-$(FUZZ_OUT)/fuzz_replay: tests/fuzz/fuzz_replay.c $(FUZZ_HDR) hal/replay/hal_replay.c hal/hal_can_mem.c \
-        $(HAL_HDR) $(FW_HDR) | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -o $@ $< hal/replay/hal_replay.c hal/hal_can_mem.c
-
-$(FUZZ_OUT)/fuzz_capture: tests/fuzz/fuzz_capture.c $(FUZZ_HDR) sim_host/capture.c sim_host/capture.h \
-        $(FW_HDR) | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -Ifirmware -Isim_host -o $@ $< sim_host/capture.c sim_host/canlog.c
-
-$(FUZZ_OUT)/fuzz_dbc: tests/fuzz/fuzz_dbc.c $(FUZZ_HDR) sim_host/dbc.c sim_host/dbc.h | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -Isim_host -o $@ $< sim_host/dbc.c -lm
+$(call fuzz_target,ecu,$(FW_SRC))
+$(call fuzz_target,nvm,$(FW_SRC))
+$(call fuzz_target,canlog,$(LOG_SRC))
+$(call fuzz_target,replay,hal/replay/hal_replay.c hal/hal_can_mem_api.c hal/hal_can_mem.c)
+$(call fuzz_target,capture,sim_host/lib/capture.c $(LOG_SRC))
+$(call fuzz_target,dbc,sim_host/lib/dbc.c)
 
 # The DBC's seed is the DBC itself, as it is now (16 KB: inputs up to 20 KB).
 FUZZ_SEED_DIRS_dbc := $(FUZZ_OUT)/seed/dbc
@@ -77,6 +72,7 @@ $(FUZZ_OUT)/seed/dbc/pfe.dbc: can_dbc/pfe.dbc
 
 FUZZ_BINS := $(addprefix $(FUZZ_OUT)/fuzz_,$(FUZZ_TARGETS))
 
+## the libFuzzer targets only (build/fuzz/)
 fuzz-build: $(FUZZ_BINS) $(FUZZ_OUT)/seed/dbc/pfe.dbc
 
 # $(1): seconds per target
@@ -87,14 +83,17 @@ define fuzz_run
 	done
 endef
 
+## each libFuzzer target for FUZZ_SECONDS after its regression inputs
 fuzz: fuzz-build
 	$(call fuzz_run,$(FUZZ_SECONDS))
 
-fuzz-smoke: fuzz-build
+## each libFuzzer target for FUZZ_SMOKE_SECONDS (part of make test)
+test-fuzz-smoke: fuzz-build
 	$(call fuzz_run,$(FUZZ_SMOKE_SECONDS))
 
-$(FUZZ_OUT)/ecu_seed: tests/fuzz/ecu_seed.c sim_host/capture.c sim_host/capture.h | $(FUZZ_DEPS)
-	$(FUZZ_CC) $(WARN) -O1 -I. -Ifirmware -Isim_host -o $@ $< sim_host/capture.c sim_host/canlog.c
+# The seed writer: a host program of the host flavour (mk/host.mk).
+$(call host_program,ecu_seed,tests/fuzz/ecu_seed.c)
 
-fuzz-seeds: $(FUZZ_OUT)/ecu_seed $(BUILD)/e2e/payload/drive.log
-	sh tests/fuzz/make_seeds.sh $(BUILD)/e2e/payload/drive.log $(FUZZ_OUT)/ecu_seed
+## rewrite the committed fuzzing seeds from the bundled logs
+fuzz-seeds: $(HOST)/ecu_seed $(BUILD)/e2e/payload/drive.log
+	sh tests/fuzz/make_seeds.sh $(BUILD)/e2e/payload/drive.log $(HOST)/ecu_seed

@@ -60,11 +60,12 @@ $(HARDEN_STAMP): scripts/deps.sh
 # backend it runs drives on (hal/replay), the ECU loop and the CAN queue. Not
 # hal/socketcan, hal/posix (Linux) nor hal/fake (host tests).
 MISRA_SRC := $(FW_SRC) $(sort $(wildcard hal/mps2/*.c hal/replay/*.c)) \
-             hal/hal_ecu_loop.c hal/hal_can_mem.c
+             hal/hal_ecu_loop.c hal/hal_can_mem.c hal/hal_can_mem_api.c
 MISRA_CHECK := python3 scripts/misra_check.py --deviations misra/deviations.txt
 # Recursive: STM32_MISRA_SRC comes from mk/stm32.mk, included later.
 MISRA_STM32_SRC = $(FW_SRC) hal/hal_ecu_loop.c hal/hal_can_mem.c $(STM32_MISRA_SRC)
 
+## MISRA C:2012 on the Cortex-M4 code and the STM32 image (cppcheck's addon, misra/deviations.txt)
 misra: $(HARDEN_STAMP)
 	@mkdir -p $(MISRA_OUT)
 	$(MISRA_CHECK) --build-dir $(MISRA_OUT)/cache -I. -Ifirmware $(MISRA_SRC)
@@ -83,11 +84,11 @@ COV_BRANCH_MIN ?= 92
 
 # Force-inlined helpers (PFE_ALWAYS_INLINE) compiled as ordinary functions:
 # see firmware/pfe_fixed.h.
-COV_CFLAGS := $(WARN) -O0 -g --coverage -DPFE_NO_FORCE_INLINE
+COV_CFLAGS := $(WARN) $(HOST_INC) -O0 -g --coverage -DPFE_NO_FORCE_INLINE
 COV_OBJ := $(COV_OUT)/obj
 # The firmware and the sources every test links with it, compiled once: the
 # counts of all the tests add up in one .gcda per source.
-COV_LIB_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem.c $(REF_SRC) sim_host/dbc.c
+COV_LIB_SRC := $(FW_SRC) hal/fake/hal_fake.c hal/hal_can_mem_api.c hal/hal_can_mem.c $(REF_SRC) sim_host/lib/dbc.c
 COV_LIB_OBJ := $(patsubst %.c,$(COV_OBJ)/%.o,$(COV_LIB_SRC))
 COV_TESTS := $(addprefix unit_,$(UNIT_TESTS)) test_accuracy test_predict test_dbc_codec
 COV_TEST_OBJ := $(patsubst %,$(COV_OBJ)/tests/unit/%.o,$(UNIT_TESTS)) \
@@ -105,6 +106,7 @@ $(COV_OUT)/test_%: $(COV_OBJ)/tests/host/test_%.o $(COV_LIB_OBJ)
 	$(HOST_CC) --coverage -o $@ $^ -lcmocka -lm
 
 # Each run starts from zero counts; gcovr reads firmware/ only.
+## line and branch coverage of firmware/ by the host tests, held to its floors
 coverage: $(addprefix $(COV_OUT)/,$(COV_TESTS))
 	@find $(COV_OUT) -name '*.gcda' -delete
 	@set -e; for t in $(UNIT_TESTS); do $(COV_OUT)/unit_$$t >$(COV_OUT)/unit_$$t.log 2>&1 || \
@@ -165,6 +167,7 @@ $(STACK_OUT)/small/pfe_mps2.elf: $(M4_OUT)/pfe_mps2.elf
 	$(M4_CC) $(call m4__objs,image,$(STACK_SRC_pfe_mps2) $(M4_HAL_IMAGE_SRCS)) $(M4_LDFLAGS_IMAGE) \
 	    -Wl,--defsym=__stack_size=512 -fstack-usage -fcallgraph-info=su -dumpdir $(@D)/pfe_mps2. -o $@
 
+## worst-case stack of each product image from its call graph, against its stack size
 stack-check: $(HARDEN_STAMP) $(foreach i,$(STACK_IMAGES),$(STACK_OUT)/$(i)/$(i).elf) stm32-stack-check \
         $(STACK_OUT)/small/pfe_mps2.elf
 	@set -e; for i in pfe_mps2 pfe_ecu_mps2; do \
@@ -175,4 +178,5 @@ stack-check: $(HARDEN_STAMP) $(foreach i,$(STACK_IMAGES),$(STACK_OUT)/$(i)/$(i).
 	        --su $(STACK_OUT)/pfe_bench/*.su --measured $$measured
 	@sh tests/stack/refusals.sh $(STACK_OUT) $(M4_OUT) $(STACK_CHECK)
 
+## misra, coverage and stack-check
 test-hardening: misra coverage stack-check

@@ -4,6 +4,7 @@
 # Included from the Makefile. docs/ci.md has the times.
 
 .PHONY: test-loaded
+## make test on a busy machine (scripts/load_test.sh)
 test-loaded:
 	mkdir -p $(BUILD)
 	sh scripts/load_test.sh --log $(BUILD)/test-loaded.log -- $(MAKE) --no-print-directory test

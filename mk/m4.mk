@@ -6,7 +6,7 @@
 #   $(call m4_image,fuel_bench,firmware/model.c sim_host/bench_main.c)
 #   $(call m4_test,test_model,firmware/model.c tests/test_model.c)
 #
-# or try it alone:  make -f mk/m4.mk m4-selftest
+# or try it alone:  make -f mk/m4.mk test-m4-selftest
 #
 # Functions (call them at the top level of a makefile, not in a recipe):
 #
@@ -71,7 +71,7 @@
 #   M4_CHECK           scripts/check_image.sh
 #   M4_IMAGES, M4_TESTS  every ELF declared so far with m4_image / m4_test
 #
-# Targets: m4-deps (install packages), m4-selftest (build and run the demos
+# Targets: m4-deps (install packages), test-m4-selftest (build and run the demos
 # in tests/m4/ and check their exit codes), m4-clean.
 
 M4_ROOT := $(patsubst %/,%,$(dir $(patsubst %/,%,$(dir $(lastword $(MAKEFILE_LIST))))))
@@ -171,17 +171,20 @@ $(M4_OUT)/%.pass: $(M4_OUT)/%.elf
 	$(M4_RUN) $<
 	@touch $@
 
-.PHONY: m4-help m4-deps m4-selftest m4-clean
+.PHONY: m4-help m4-deps test-m4-selftest m4-clean
 
+## the Cortex-M4 rules' own targets (mk/m4.mk)
 m4-help:
 	@echo "mk/m4.mk: Cortex-M4 (QEMU mps2-an386) build; see its header."
-	@echo "  m4-selftest  build and run the demos in tests/m4/, check exit codes"
+	@echo "  test-m4-selftest  build and run the demos in tests/m4/, check exit codes"
 	@echo "  m4-deps      install the Debian packages (scripts/deps.sh)"
 	@echo "  m4-clean     remove $(M4_OUT)"
 
+## install the Cortex-M4 toolchain and QEMU
 m4-deps:
 	@$(M4_ROOT)/scripts/deps.sh
 
+## remove the Cortex-M4 outputs
 m4-clean:
 	rm -rf $(M4_OUT)
 
@@ -198,7 +201,8 @@ M4_EXPECT := $(M4_ROOT)/scripts/expect_exit.sh
 
 # Each run states the exit code and output lines it expects; anything else
 # fails the target.
-m4-selftest: m4-deps
+## the Cortex-M4 backend's demos (tests/m4/): exit codes and output as expected
+test-m4-selftest: m4-deps
 	@$(MAKE) --no-print-directory -f $(M4_ROOT)/mk/m4.mk BUILD=$(BUILD) M4_OUT=$(M4_OUT) $(M4_DEMOS)
 	@$(M4_EXPECT) 0 $(M4_OUT)/m4_demo_image.out \
 	    -l 'fmt: 0 4294967295 -2147483648 -7 18446744073709551615 -9223372036854775808 1234567890123 0x0000abcd 0x0123456789abcdef' \
@@ -211,6 +215,6 @@ m4-selftest: m4-deps
 	    -l '[  FAILED  ] 2 test(s), listed below:' \
 	    -- $(M4_RUN) $(M4_OUT)/m4_demo_test_fail.elf
 	@$(M4_CHECK) --bench m4_demo_image $(M4_OUT)/m4_demo_image.elf
-	@echo "m4-selftest: all passed"
+	@echo "test-m4-selftest: all passed"
 
 .DEFAULT_GOAL := $(if $(m4__standalone),m4-help,$(m4__saved_goal))

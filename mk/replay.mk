@@ -6,13 +6,13 @@
 # for the e2e drive log and mk/vcan.mk's VCAN_VM, VCAN_VM_DIR.
 #
 # Targets:
-#   replay-test        host tests, ASan + UBSan: test_canlog (CMocka: every
+#   test-replay        host tests, ASan + UBSan: test_canlog (CMocka: every
 #                      format, every kind of bad input, the drive log in three
 #                      formats), then tests/host/test_decode.sh (pfe_decode)
 #                      and tests/host/test_replay.sh (pfe_replay: dry run,
 #                      filters, ASC from can-utils' log2asc, exit codes, the
 #                      real-bus guard on lo)
-#   replay-vcan-test   tests/e2e/replay_vcan.sh on vcan0 through
+#   test-replay-vcan   tests/e2e/replay_vcan.sh on vcan0 through
 #                      scripts/vcan_vm.sh: round trips of the bundled logs and
 #                      of candump logs of cangen, the drive as ASC and as
 #                      candump output, pacing against canplayer, the guard
@@ -35,46 +35,16 @@ REPLAY_BENCH_FRAMES ?= 1000000
 REPLAY_BENCH_RUNS ?= 5
 REPLAY_VM_TIMEOUT_S ?= 1800
 
-CANLOG_SRC := sim_host/canlog.c
-CANLOG_HDR := sim_host/canlog.h
-REPLAY_SRC := sim_host/pfe_replay.c $(CANLOG_SRC) sim_host/lateness.c hal/socketcan/hal_socketcan.c
-REPLAY_HDR := $(CANLOG_HDR) sim_host/lateness.h hal/socketcan/hal_socketcan.h hal/hal_can.h
-DECODE_SRC := sim_host/pfe_decode.c $(CANLOG_SRC)
-DECODE_HDR := $(CANLOG_HDR) sim_host/dbc.h
 
-.PHONY: replay-test replay-vcan-test replay-bench
+.PHONY: test-replay test-replay-vcan replay-bench
 
 # ---------------------------------------------------------------- host tools
 
-$(HOST)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ $(REPLAY_SRC)
-
-# sim_host/dbc.c draws a false maybe-uninitialized warning at -O2 without the
-# sanitizers (expect_u32's v, written by parse_u64_token whenever it returns
-# 0): that one warning is off for this object.
-$(REPLAY_OUT)/obj/dbc.o: sim_host/dbc.c sim_host/dbc.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Wno-maybe-uninitialized -c $< -o $@
-
-$(HOST)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) $(REPLAY_OUT)/obj/dbc.o | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -o $@ $(DECODE_SRC) $(REPLAY_OUT)/obj/dbc.o -lm
 
 # ---------------------------------------------------------------- host tests (ASan, UBSan)
 
-$(HOSTSAN)/test_canlog: tests/host/test_canlog.c $(CANLOG_SRC) sim_host/lateness.c $(CANLOG_HDR) tests/replay/log_vectors.h \
-        sim_host/lateness.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Isim_host -o $@ $< $(CANLOG_SRC) sim_host/lateness.c -lcmocka
 
-$(HOSTSAN)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $(REPLAY_SRC)
 
-$(HOSTSAN)/pfe_decode: $(DECODE_SRC) $(DECODE_HDR) sim_host/dbc.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -o $@ $(DECODE_SRC) sim_host/dbc.c -lm
 
 # can-utils' log2asc writes the ASC that test_replay.sh reads back.
 $(REPLAY_OUT)/.deps-ok: scripts/deps.sh
@@ -82,7 +52,8 @@ $(REPLAY_OUT)/.deps-ok: scripts/deps.sh
 	sh scripts/deps.sh can-utils
 	@touch $@
 
-replay-test: $(HOSTSAN)/test_canlog $(HOSTSAN)/pfe_replay $(HOSTSAN)/pfe_decode $(REPLAY_DRIVE_LOG) \
+## pfe_replay and pfe_decode on the host: every log format, bad input, exit codes, the real-bus guard on lo
+test-replay: $(HOSTSAN)/test_canlog $(HOSTSAN)/pfe_replay $(HOSTSAN)/pfe_decode $(REPLAY_DRIVE_LOG) \
         $(REPLAY_OUT)/.deps-ok $(HOST)/pfe_ecu_replay $(HOST)/pfe_ecu
 	@echo "== host: test_canlog"; $(HOSTSAN)/test_canlog $(REPLAY_DRIVE_LOG)
 	@echo "== host: test_decode.sh"; sh tests/host/test_decode.sh $(HOSTSAN)/pfe_decode can_dbc/pfe.dbc
@@ -92,23 +63,14 @@ replay-test: $(HOSTSAN)/test_canlog $(HOSTSAN)/pfe_replay $(HOSTSAN)/pfe_decode 
 # ---------------------------------------------------------------- on vcan (scripts/vcan_vm.sh)
 
 # Static programs: the VM's initramfs has no C library.
-REPLAY_STATIC := $(WARN) -O2 -static -I. -Ifirmware
+$(call host_payload,$(REPLAY_PAYLOAD),pfe_replay lateness_check slcan_run)
+$(call host_payload,$(REPLAY_BENCH_PAYLOAD),pfe_replay biglog_gen bench_time)
 # The bundled drive logs, committed gzip-compressed, expanded into
 # $(BUILD)/logs/ by mk/run.mk's rule.
-REPLAY_LOGS := $(patsubst sim_host/logs/%.log.gz,$(BUILD)/logs/%.log,$(sort $(wildcard sim_host/logs/*.log.gz)))
+REPLAY_LOGS := $(patsubst sim_host/data/logs/%.log.gz,$(BUILD)/logs/%.log,$(sort $(wildcard sim_host/data/logs/*.log.gz)))
 
-$(REPLAY_PAYLOAD)/pfe_replay: $(REPLAY_SRC) $(REPLAY_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(REPLAY_STATIC) -o $@ $(REPLAY_SRC)
 
-$(REPLAY_PAYLOAD)/lateness_check: tests/e2e/lateness_check.c $(CANLOG_SRC) sim_host/lateness.c \
-        $(CANLOG_HDR) sim_host/lateness.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(REPLAY_STATIC) -o $@ $< $(CANLOG_SRC) sim_host/lateness.c
 
-$(REPLAY_PAYLOAD)/slcan_run: tests/e2e/slcan_run.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(REPLAY_STATIC) -o $@ $<
 
 $(REPLAY_PAYLOAD)/replay_vcan.sh: tests/e2e/replay_vcan.sh
 	@mkdir -p $(@D)
@@ -122,37 +84,26 @@ $(REPLAY_PAYLOAD)/drive.log: $(REPLAY_DRIVE_LOG)
 $(REPLAY_PAYLOAD)/logs/.copied: $(REPLAY_LOGS) mk/replay.mk
 	@rm -rf $(@D) && mkdir -p $(@D)
 	@for f in $(REPLAY_LOGS); do cp "$$f" $(@D)/ || exit 1; done
-	@echo "replay: $(words $(REPLAY_LOGS)) bundled log(s) from sim_host/logs in the payload"
+	@echo "replay: $(words $(REPLAY_LOGS)) bundled log(s) from sim_host/data/logs in the payload"
 	@touch $@
 
 REPLAY_PAYLOAD_FILES := $(addprefix $(REPLAY_PAYLOAD)/,pfe_replay lateness_check slcan_run \
     replay_vcan.sh drive.log logs/.copied)
 
-replay-vcan-test: $(REPLAY_PAYLOAD_FILES)
+## pfe_replay on vcan0 in the VM: round trips of the bundled logs, pacing against canplayer, the guard
+test-replay-vcan: $(REPLAY_PAYLOAD_FILES)
 	VCAN_VM_DIR=$(VCAN_VM_DIR) $(VCAN_VM) --time --timeout $(REPLAY_VM_TIMEOUT_S) \
 	    --payload $(abspath $(REPLAY_PAYLOAD)) -- sh $(abspath $(REPLAY_PAYLOAD))/replay_vcan.sh
 
 # ---------------------------------------------------------------- benchmark
 
-$(HOST)/biglog_gen: tests/bench/biglog_gen.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -o $@ $<
 
-$(HOST)/bench_time: tests/bench/bench_time.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -o $@ $<
 
 $(REPLAY_OUT)/big.log: $(HOST)/biglog_gen
 	@mkdir -p $(@D)
 	$(HOST)/biglog_gen $(REPLAY_BENCH_FRAMES) > $@.tmp && mv $@.tmp $@
 
-$(REPLAY_BENCH_PAYLOAD)/%: tests/bench/%.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(REPLAY_STATIC) -o $@ $<
 
-$(REPLAY_BENCH_PAYLOAD)/pfe_replay: $(REPLAY_PAYLOAD)/pfe_replay
-	@mkdir -p $(@D)
-	cp $< $@
 
 $(REPLAY_BENCH_PAYLOAD)/replay_bench.sh: tests/bench/replay_bench.sh
 	@mkdir -p $(@D)
@@ -161,6 +112,7 @@ $(REPLAY_BENCH_PAYLOAD)/replay_bench.sh: tests/bench/replay_bench.sh
 # canplayer cannot run on this machine (its kernel has no CAN sockets, and
 # canplayer opens one even for stdout=): the comparison runs both programs
 # in one VM, on a copy of the log generated there (checked by its md5sum).
+## bench: log_parse_fps, and pfe_replay against canplayer in one VM run
 replay-bench: $(HOST)/pfe_replay $(HOST)/bench_time $(REPLAY_OUT)/big.log \
         $(addprefix $(REPLAY_BENCH_PAYLOAD)/,pfe_replay biglog_gen bench_time replay_bench.sh)
 	@set -e; out=$$($(HOST)/bench_time $(REPLAY_BENCH_RUNS) $(HOST)/pfe_replay -t --quiet \

@@ -1,5 +1,5 @@
 # Road profiles from route planners' data: roadimport (GPX with elevations,
-# distance/elevation CSV; sim_host/road_import.h), its tests, and the route
+# distance/elevation CSV; sim_host/lib/road_import.h), its tests, and the route
 # demo.
 #
 # Include from the top-level Makefile after mk/thesis.mk (it uses BUILD,
@@ -17,25 +17,15 @@
 #                     compared by route_choice with their bounds, and
 #                     plotted: $(ROUTE_DEMO)/route_demo.png
 
-ROADIMPORT_SRC := sim_host/road_import.c
-ROADIMPORT_HDR := sim_host/road_import.h sim_host/cli_args.h
 ROUTE_DEMO := $(BUILD)/route-demo
 ROUTE_DEMO_NAMES := pass valley coast
 
 .PHONY: test-road-import route-demo
 
-$(HOST)/roadimport: sim_host/roadimport.c $(ROADIMPORT_SRC) $(ROADIMPORT_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -o $@ sim_host/roadimport.c $(ROADIMPORT_SRC) -lm
 
-$(HOSTSAN)/roadimport: sim_host/roadimport.c $(ROADIMPORT_SRC) $(ROADIMPORT_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -o $@ sim_host/roadimport.c $(ROADIMPORT_SRC) -lm
 
-$(HOSTSAN)/test_road_import: tests/host/test_road_import.c $(ROADIMPORT_SRC) $(ROADIMPORT_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -o $@ $< $(ROADIMPORT_SRC) -lcmocka -lm
 
+## roadimport's tests: made-up tracks with known answers, noise, bad input
 test-road-import: $(HOSTSAN)/test_road_import $(HOSTSAN)/roadimport
 	@rm -rf $(BUILD)/road-import-test && mkdir -p $(BUILD)/road-import-test
 	@echo "== host: test_road_import"; $(HOSTSAN)/test_road_import $(BUILD)/road-import-test
@@ -52,6 +42,7 @@ test-road-import: $(HOSTSAN)/test_road_import $(HOSTSAN)/roadimport
 	@test ! -e $(BUILD)/road-import-test/noele.csv
 	@echo "roadimport: an 18 km GPX imported to 1800 samples; a GPX without elevations refused with its line"
 
+## three made-up GPX tracks imported, compared by route_choice and plotted
 route-demo: $(HOST)/roadimport $(HOST)/route_choice $(GNUPLOT_STAMP)
 	@sh scripts/demo_gpx.sh $(ROUTE_DEMO)
 	@set -e; for r in $(ROUTE_DEMO_NAMES); do \

@@ -12,7 +12,7 @@
 #                     on vcan0 (natively, else under QEMU), the drive replayed
 #                     by pfe_replay, then run_report: summary, CSV, plot, and
 #                     the verdict on RUN_EXPECT (exit status 1 when it fails)
-#   drive-logs        regenerate the committed logs sim_host/logs/*.log.gz
+#   drive-logs        regenerate the committed logs sim_host/data/logs/*.log.gz
 #   logs              expand them into $(LOG_DIR)/
 #   test-drive-logs   regenerating each committed log gives it byte for byte
 #   test-run-host     capture reader, noise, run_report (ASan, UBSan)
@@ -23,14 +23,14 @@
 #                 the bundled hilly drive, $(RUN_DIR)/hilly_run.log)
 #   RUN_DRIVE_S   length of that slice in seconds                        (120)
 #   RUN_PREVIEW_SAMPLES  its grade previews' length in 12 m samples       (150)
-#   RUN_EXPECT    expected values and tolerances (sim_host/logs/hilly_run.expect)
+#   RUN_EXPECT    expected values and tolerances (sim_host/data/logs/hilly_run.expect)
 #   RUN_JUNIT     JUnit XML report                    ($(RUN_DIR)/junit.xml)
 #   RUN_REPORT_FLAGS  more run_report options (e.g. --module-sa 0x90)
 #   RUN_TIMEOUT_S     limit of the bus part, VM boot included            (600)
 
 RUN_DIR := $(BUILD)/run
 RUN_PAYLOAD := $(RUN_DIR)/payload
-LOGS_SRC := sim_host/logs
+LOGS_SRC := sim_host/data/logs
 LOG_DIR := $(BUILD)/logs
 RUN_DRIVE_S ?= 120
 RUN_LOG ?= $(RUN_DIR)/hilly_run.log
@@ -46,11 +46,6 @@ GNUPLOT_STAMP := $(BUILD)/.gnuplot-ok
 DRIVE_FLAGS := --vehicles 5 --position 1 --gap-m 10 --set-speed-kmh 90 \
                --speed-noise-kmh 0.05 --pitch-noise-deg 0.02 --seed 1
 
-CAPTURE_SRC := sim_host/capture.c sim_host/canlog.c sim_host/bus_ref.c sim_host/ref_model.c
-CAPTURE_HDR := sim_host/capture.h sim_host/canlog.h sim_host/bus_ref.h sim_host/ref_model.h
-# run_report's judge of the prediction (its header lists what it needs)
-PJ_SRC := sim_host/prediction_judge.c
-PJ_HDR := sim_host/prediction_judge.h
 
 .PHONY: run run-sim drive-logs logs test-drive-logs test-run-host test-record-vm
 
@@ -62,17 +57,12 @@ $(GNUPLOT_STAMP): scripts/deps.sh
 	@touch $@
 
 # Only listens: built without the real-bus guard, which it does not need.
-$(HOST)/pfe_record: sim_host/pfe_record.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -o $@ $<
 
-$(HOST)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(PJ_SRC) $(PJ_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
 
 # ---------------------------------------------------------------- drive logs
 
 # Written only on request: the committed files are the reference.
+## regenerate the committed drive logs sim_host/data/logs/*.log.gz
 drive-logs: $(HOST)/drivegen
 	@mkdir -p $(LOG_DIR)
 	@set -e; for r in $(ROAD_NAMES); do \
@@ -86,6 +76,7 @@ $(LOG_DIR)/%.log: $(LOGS_SRC)/%.log.gz
 	@mkdir -p $(@D)
 	gzip -dc $< > $@
 
+## expand the committed drive logs into build/logs/
 logs: $(addprefix $(LOG_DIR)/,$(addsuffix .log,$(ROAD_NAMES)))
 
 # The bundled run drive: the hilly drive's first RUN_DRIVE_S seconds (its
@@ -102,6 +93,7 @@ $(RUN_DIR)/hilly_run.log: $(HOST)/drivegen $(ROADS)/hilly.csv $(lastword $(MAKEF
 	    --out $(RUN_DIR)/hilly_preview.log 2> /dev/null
 	awk -v end="($$((1700000000 + $(RUN_DRIVE_S))).000000)" '$$1 < end' $(RUN_DIR)/hilly_preview.log > $@
 
+## regenerating each committed drive log gives it byte for byte
 test-drive-logs: $(HOST)/drivegen
 	@mkdir -p $(BUILD)/logs-check
 	@set -e; for r in $(ROAD_NAMES); do \
@@ -116,20 +108,11 @@ test-drive-logs: $(HOST)/drivegen
 
 # What the bus part gets (scripts/run_drive.sh): static programs, the drive.
 RUN_PAYLOAD_FILES := pfe_ecu pfe_record pfe_replay drive.log run_drive.sh
-RUN_STATIC := $(WARN) -static -O2
+$(call host_payload,$(RUN_PAYLOAD),pfe_ecu pfe_record pfe_replay)
 
-$(RUN_PAYLOAD)/pfe_ecu: $(ECU_HOST_SRC) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(RUN_STATIC) -I. -Ifirmware -o $@ $(ECU_HOST_SRC) $(FW_SRC)
 
-$(RUN_PAYLOAD)/pfe_record: sim_host/pfe_record.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(RUN_STATIC) -o $@ $<
 
 # The replayer, static as mk/replay.mk builds it for its own VM tests.
-$(RUN_PAYLOAD)/pfe_replay: $(REPLAY_PAYLOAD)/pfe_replay
-	@mkdir -p $(@D)
-	cp $< $@
 
 $(RUN_PAYLOAD)/run_drive.sh: scripts/run_drive.sh
 	@mkdir -p $(@D)
@@ -141,6 +124,7 @@ $(RUN_PAYLOAD)/drive.log: $(RUN_LOG)
 	@mkdir -p $(@D)
 	cp $< $@
 
+## the module on vcan0 fed the bundled hilly drive, judged: summary, CSV, plot, verdict
 run: $(HOST)/run_report $(GNUPLOT_STAMP) $(addprefix $(RUN_PAYLOAD)/,$(RUN_PAYLOAD_FILES))
 	@t0=$$(date +%s); \
 	VCAN_VM_DIR=$(VCAN_VM_DIR) sh scripts/run_drive.sh --payload $(RUN_PAYLOAD) --out $(RUN_DIR) \
@@ -150,6 +134,7 @@ run: $(HOST)/run_report $(GNUPLOT_STAMP) $(addprefix $(RUN_PAYLOAD)/,$(RUN_PAYLO
 
 # The earlier `make run`: the platoon simulation over the hilly road, fixed
 # point against double, no bus.
+## simulate the bundled hilly road, fixed point against double, no bus
 run-sim: $(HOST)/platoon_sim
 	$(HOST)/platoon_sim --road $(ROADS)/hilly.csv --vehicles 5 --set-speed-kmh 90 \
 	    --trace $(BUILD)/run_hilly_trace.csv
@@ -157,20 +142,10 @@ run-sim: $(HOST)/platoon_sim
 
 # ---------------------------------------------------------------- tests
 
-$(HOSTSAN)/test_capture: tests/host/test_capture.c $(CAPTURE_SRC) $(CAPTURE_HDR) sim_host/drive_trace.c \
-        sim_host/drive_trace.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(CAPTURE_SRC) sim_host/drive_trace.c \
-	    $(FW_SRC) -lcmocka -lm
 
-$(HOSTSAN)/run_report: sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(CAPTURE_HDR) $(SIM_HDR) $(PJ_SRC) $(PJ_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ sim_host/run_report.c $(CAPTURE_SRC) $(TRUCK_CAL_SRC) $(PJ_SRC) $(FW_SRC) -lm
 
-$(HOSTSAN)/ecu_offline: tests/host/ecu_offline.c sim_host/capture.c sim_host/canlog.c sim_host/capture.h $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< sim_host/capture.c sim_host/canlog.c $(FW_SRC) -lm
 
+## capture reader, noise, run_report and its prediction judge on the firmware ECU run offline
 test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offline \
         $(LOG_DIR)/hilly.log $(GNUPLOT_STAMP) $(HOST)/drivegen $(HOST)/run_report
 	@echo "== host: test_capture"; $(HOSTSAN)/test_capture
@@ -183,13 +158,12 @@ test-run-host: $(HOSTSAN)/test_capture $(HOSTSAN)/run_report $(HOSTSAN)/ecu_offl
 
 # The recorder in the VM, next to candump -L, on every kind of frame.
 RECORD_PAYLOAD := $(BUILD)/record-vm
-$(RECORD_PAYLOAD)/pfe_record: sim_host/pfe_record.c | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(RUN_STATIC) -o $@ $<
+$(call host_payload,$(RECORD_PAYLOAD),pfe_record)
 $(RECORD_PAYLOAD)/record_vs_candump.sh: tests/e2e/record_vs_candump.sh
 	@mkdir -p $(@D)
 	cp $< $@
 
+## pfe_record against candump -L on the same traffic, in the VM
 test-record-vm: $(RECORD_PAYLOAD)/pfe_record $(RECORD_PAYLOAD)/record_vs_candump.sh
 	VCAN_VM_DIR=$(VCAN_VM_DIR) $(VCAN_VM) --time --timeout 900 --payload $(abspath $(RECORD_PAYLOAD)) -- \
 	    sh $(abspath $(RECORD_PAYLOAD))/record_vs_candump.sh

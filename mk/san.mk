@@ -1,23 +1,20 @@
-# Every host tool built with ASan and UBSan (build/host-san/tools/), and the
-# bad-input tests run against those builds (tests/host/bad_input.sh): empty,
-# binary and directory inputs, a huge line, bad numbers, missing files.
-# Included from the Makefile; `make test` runs test-san, and with it
-# test-doc-options.
+# Every host tool built with ASan and UBSan ($(HOSTSAN)/NAME, mk/host.mk's
+# host-san flavour), and the bad-input tests run against those builds
+# (tests/host/bad_input.sh): empty, binary and directory inputs, a huge
+# line, bad numbers, missing files. Included from the Makefile; `make test`
+# runs test-san, and with it test-doc-options.
 
-SAN_TOOLS_DIR := $(HOSTSAN)/tools
+SAN_TOOLS_DIR := $(HOSTSAN)
 
 .PHONY: san test-san test-doc-options
-# The tools' own rules, with the sanitizer flags and a build tree of their own.
-san:
-	@$(MAKE) --no-print-directory BUILD=$(BUILD)/san HOST=$(SAN_TOOLS_DIR) \
-	    HOST_CFLAGS='$(SAN_CFLAGS)' tools
+## every host tool built with ASan and UBSan (build/host-san/)
+san: $(addprefix $(HOSTSAN)/,$(TOOL_NAMES))
 
-# Every option the README and docs/ name for a host tool is in its --help
-# (tests/host/doc_options.sh); the programs of the README's tool table.
-DOC_TOOLS := $(TOOLS) $(addprefix $(HOST)/,selfcheck ecu_check pfe_faults roadimport truckgen truck_judge cal2c)
-test-doc-options: $(DOC_TOOLS)
+## every option the README and docs/ name for a host tool is in its --help
+test-doc-options: $(addprefix $(HOST)/,$(TOOL_NAMES))
 	@sh tests/host/doc_options.sh $(HOST)
 
+## bad input (empty, binary, huge lines, bad numbers, missing files) to every tool's ASan and UBSan build
 test-san: san test-doc-options
 	@echo "== host: bad input to every tool, ASan and UBSan builds ($(SAN_TOOLS_DIR))"
 	@sh tests/host/bad_input.sh $(SAN_TOOLS_DIR) $(BUILD)/bad-input can_dbc/pfe.dbc

@@ -2,14 +2,13 @@
 #
 # Include from the top-level Makefile (make runs in the repository root),
 # after the variables it uses are set (BUILD, HOST, HOSTSAN, HOST_CC,
-# HOST_CFLAGS, SAN_CFLAGS, FW_SRC, FW_HDR, ROADS, ROAD_NAMES, DEPS_STAMP):
+# ROADS, ROAD_NAMES, DEPS_STAMP):
 #
 #   include mk/sensitivity.mk
-#   TOOLS += $(HOST)/sensitivity        (or on the TOOLS line)
 #   test: test-sensitivity
 #
-# Targets:
-#   $(HOST)/sensitivity   the command (sim_host/sensitivity.c)
+# The command, $(HOST)/sensitivity (sim_host/tools/sensitivity.c), is built
+# by the Makefile's template, as every tool is. Targets:
 #   sensitivity           run it on the three bundled roads: tables on
 #                         stdout, $(SENS_OUT)/NAME.csv and NAME.png; then
 #                         the number of trucks swept, N = 1 .. 32 on the
@@ -24,8 +23,6 @@
 #
 # The plots need gnuplot: scripts/deps.sh installs gnuplot-nox on first use.
 
-SENS_SRC := sim_host/sensitivity_run.c sim_host/ref_model.c sim_host/road_csv.c
-SENS_HDR := sim_host/sensitivity_run.h sim_host/ref_model.h sim_host/road_csv.h
 SENS_OUT := $(BUILD)/sensitivity
 SENS_CHECK := $(BUILD)/sensitivity-check
 SENS_ROADS := $(addprefix $(ROADS)/,$(addsuffix .csv,$(ROAD_NAMES)))
@@ -38,25 +35,18 @@ $(SENS_PLOT_STAMP): scripts/deps.sh
 	sh scripts/deps.sh gnuplot-nox
 	@touch $@
 
-$(HOST)/sensitivity: sim_host/sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/sensitivity.c $(SENS_SRC) $(FW_SRC) -lm
 
-$(HOSTSAN)/sensitivity: sim_host/sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ sim_host/sensitivity.c $(SENS_SRC) $(FW_SRC) -lm
 
-$(HOSTSAN)/test_sensitivity: tests/host/test_sensitivity.c $(SENS_SRC) $(SENS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(SENS_SRC) $(FW_SRC) -lcmocka -lm
 
 # The N sweep needs platoon_compare (mk/thesis.mk) and valgrind (its stamp's rule there too).
 SENS_SWEEP_DEPS := $(HOST)/platoon_compare $(BUILD)/.deps-valgrind scripts/n_sweep.sh
 
+## the sensitivity analysis on the three roads (tables, CSV, plots) and the N sweep
 sensitivity: $(HOST)/sensitivity $(SENS_PLOT_STAMP) $(SENS_SWEEP_DEPS)
 	$(HOST)/sensitivity --out $(SENS_OUT) $(SENS_ROADS)
 	sh scripts/n_sweep.sh $(HOST)/platoon_compare $(ROADS)/hilly.csv $(SENS_OUT) 1 32
 
+## the sensitivity analysis's tests, and the tool on good and bad roads
 test-sensitivity: $(HOSTSAN)/test_sensitivity $(HOSTSAN)/sensitivity $(SENS_PLOT_STAMP) $(SENS_SWEEP_DEPS)
 	@echo "== host: test_sensitivity"; $(HOSTSAN)/test_sensitivity $(ROADS)
 	@echo "== host: sensitivity on $(ROAD_NAMES), and on a bad road"

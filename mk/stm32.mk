@@ -26,7 +26,7 @@ STM32_ECU_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c $(STM32_HAL_SRC) ha
     hal/stm32f4/main_ecu.c
 # The bench: the mps2 ECU replay (hal/mps2/main_ecu.c, hal/replay) on this
 # board, TIM2 counting instructions under QEMU (hal/stm32f4/icount_tim2.c).
-STM32_BENCH_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c \
+STM32_BENCH_SRC := $(FW_SRC) $(ECU_LOOP_SRC) hal/hal_can_mem.c hal/replay/hal_replay.c hal/hal_can_mem_api.c \
     hal/replay/hal_replay_ecu.c hal/stm32f4/startup.c hal/stm32f4/hal_stm32_board.c \
     hal/stm32f4/hal_stm32_time.c hal/stm32f4/icount_tim2.c hal/stm32f4/main_bench_glue.c \
     hal/mps2/main_ecu.c hal/mps2/calib_default.c hal/mps2/semihost.c
@@ -43,22 +43,24 @@ STM32_LDFLAGS = $(M4_ARCH_FLAGS) -O2 -flto -nostartfiles -nostdlib -Llinker -T$(
 
 .PHONY: stm32 test-stm32 test-stm32-host test-stm32-qemu test-stm32-bench-guide
 
-$(STM32_OUT)/pfe_stm32.elf: $(call m4__objs,image,$(STM32_ECU_SRC)) $(STM32_LDSCRIPT)
-	@mkdir -p $(@D)
-	$(M4_CC) $(filter %.o,$^) $(STM32_LDFLAGS) -o $@
-	$(M4_CHECK) $@ || { rm -f $@; exit 1; }
+# $(call stm32_image,NAME,SOURCES,LDFLAGS): $(STM32_OUT)/NAME.elf from the
+# Cortex-M4 objects of SOURCES (compiled once, $(M4_OUT)/obj/image/), linked
+# for the STM32F405 (and LDFLAGS), refused by scripts/check_image.sh if it
+# links the heap or floating point.
+define stm32__image
+$(STM32_OUT)/$(1).elf: $(call m4__objs,image,$(2)) $(STM32_LDSCRIPT)
+	@mkdir -p $$(@D)
+	$$(M4_CC) $$(filter %.o,$$^) $$(STM32_LDFLAGS) $(3) -o $$@
+	$$(M4_CHECK) $$@ || { rm -f $$@; exit 1; }
+endef
+stm32_image = $(eval $(call stm32__image,$(1),$(2),$(3)))
 
 # The self-check's road does not fit the product's 48 KiB: QEMU's flash is 1 MiB.
-$(STM32_OUT)/pfe_stm32_qemu.elf: $(call m4__objs,image,$(STM32_QEMU_SRC)) $(STM32_LDSCRIPT)
-	@mkdir -p $(@D)
-	$(M4_CC) $(filter %.o,$^) $(STM32_LDFLAGS) -Wl,--defsym=__flash_size=512K -o $@
-	$(M4_CHECK) $@ || { rm -f $@; exit 1; }
-
-$(STM32_OUT)/pfe_stm32_bench.elf: $(call m4__objs,image,$(STM32_BENCH_SRC)) $(STM32_LDSCRIPT)
-	@mkdir -p $(@D)
-	$(M4_CC) $(filter %.o,$^) $(STM32_LDFLAGS) -Wl,--defsym=__flash_size=512K \
-	    -Wl,--defsym=__ram_size=128K -o $@
-	$(M4_CHECK) $@ || { rm -f $@; exit 1; }
+STM32_QEMU_LDFLAGS := -Wl,--defsym=__flash_size=512K
+STM32_BENCH_LDFLAGS := -Wl,--defsym=__flash_size=512K -Wl,--defsym=__ram_size=128K
+$(call stm32_image,pfe_stm32,$(STM32_ECU_SRC))
+$(call stm32_image,pfe_stm32_qemu,$(STM32_QEMU_SRC),$(STM32_QEMU_LDFLAGS))
+$(call stm32_image,pfe_stm32_bench,$(STM32_BENCH_SRC),$(STM32_BENCH_LDFLAGS))
 
 # The image for a programmer: .hex (and the ELF) program only the sectors
 # they cover; the .bin spans the NVM sectors (filled 0xFF), so writing it
@@ -71,18 +73,20 @@ $(STM32_OUT)/%.bin: $(STM32_OUT)/%.elf
 $(STM32_OUT)/%.hex: $(STM32_OUT)/%.elf
 	$(M4_CROSS)objcopy -O ihex $< $@
 
+## the STM32F405 image: build/stm32/pfe_stm32.elf, .bin, .hex
 stm32: $(DEPS_STAMP) $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32.bin $(STM32_OUT)/pfe_stm32.hex
 	@$(M4_SIZE) $(STM32_OUT)/pfe_stm32.elf
 
-# Image checks (make check-image): no heap, no floating-point helpers
+# Image checks (make test-image): no heap, no floating-point helpers
 # (scripts/check_image.sh), and no FPU instruction at all: the FPU stays off,
 # so one would fault.
-.PHONY: stm32-check-image
-stm32-check-image: $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32_qemu.elf $(STM32_OUT)/pfe_stm32_bench.elf
+.PHONY: test-stm32-image
+## the STM32 images: no heap, no floating point, no FPU instruction
+test-stm32-image: $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32_qemu.elf $(STM32_OUT)/pfe_stm32_bench.elf
 	@set -e; for e in $^; do $(M4_CHECK) $$e; \
 	    if $(M4_OBJDUMP) -d $$e | grep -Eq '\s(v[a-z0-9]+(\.[a-z0-9]+)*)\s+(s[0-9]|d[0-9]|\{[sd])'; then \
-	        echo "stm32-check-image: $$e has FPU instructions"; exit 1; fi; \
-	    echo "stm32-check-image: $$e: no heap, no floating point, no FPU instruction"; done
+	        echo "test-stm32-image: $$e has FPU instructions"; exit 1; fi; \
+	    echo "test-stm32-image: $$e: no heap, no floating point, no FPU instruction"; done
 
 # ---------------------------------------------------------------- host tests (register models)
 
@@ -91,35 +95,28 @@ STM32_MODEL_SRC := tests/stm32/bxcan_model.c tests/stm32/flash_model.c tests/stm
     hal/stm32f4/hal_stm32_can.c hal/hal_can_mem.c
 STM32_MODEL_HDR := $(wildcard tests/stm32/*.h)
 
-$(HOSTSAN)/test_stm32_can: tests/stm32/test_stm32_can.c hal/stm32f4/hal_stm32_can.c hal/hal_can_mem.c \
-        $(ECU_LOOP_SRC) $(FW_SRC) $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(sort $(filter %.c,$^)) -lcmocka
+# $(call stm32_model_test,NAME,SOURCES,FLAGS): $(HOSTSAN)/NAME from
+# tests/stm32/NAME.c, SOURCES and the register models, every file compiled
+# with the models in place of the registers (and FLAGS).
+define stm32__model_test
+$(HOSTSAN)/$(1): tests/stm32/$(1).c $(2) $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) $(FW_HDR) | $(DEPS_STAMP)
+	@mkdir -p $$(@D)
+	$$(HOST_CC) $$(STM32_SAN_CFLAGS) $(3) -o $$@ $$(sort $$(filter %.c,$$^)) -lcmocka
+endef
+stm32_model_test = $(eval $(call stm32__model_test,$(1),$(2),$(3)))
 
-$(HOSTSAN)/test_hal_stm32: tests/stm32/test_hal_stm32.c tests/hal/hal_conformance.c hal/stm32f4/hal_stm32_can.c \
-        hal/stm32f4/hal_stm32_time.c hal/stm32f4/hal_stm32_tick.c hal/hal_can_mem.c $(FW_SRC) \
-        $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) \
-        $(HAL_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(sort $(filter %.c,$^)) -lcmocka
-
-$(HOSTSAN)/test_stm32_nvm: tests/stm32/test_stm32_nvm.c hal/stm32f4/hal_stm32_nvm.c $(FW_SRC) \
-        $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(sort $(filter %.c,$^)) -lcmocka
-
-$(HOSTSAN)/test_stm32_board: tests/stm32/test_stm32_board.c hal/stm32f4/hal_stm32_time.c hal/stm32f4/hal_stm32_tick.c \
-        hal/stm32f4/hal_stm32_board.c $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(STM32_SAN_CFLAGS) -DSTM32_MODEL_OWN_CLOCK -o $@ $(sort $(filter %.c,$^)) -lcmocka
-
-$(HOSTSAN)/test_stm32_ecu: tests/stm32/test_stm32_ecu.c hal/stm32f4/hal_stm32_ecu.c hal/stm32f4/hal_stm32_nvm.c \
-        $(ECU_LOOP_SRC) $(FW_SRC) $(STM32_MODEL_SRC) $(STM32_MODEL_HDR) $(HAL_HDR) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(STM32_SAN_CFLAGS) -o $@ $(sort $(filter %.c,$^)) -lcmocka
+$(call stm32_model_test,test_stm32_can,$(ECU_LOOP_SRC) $(FW_SRC))
+$(call stm32_model_test,test_hal_stm32,tests/hal/hal_conformance.c hal/stm32f4/hal_stm32_time.c \
+    hal/stm32f4/hal_stm32_tick.c $(FW_SRC),-DSTM32_MODEL_OWN_CLOCK)
+$(call stm32_model_test,test_stm32_nvm,hal/stm32f4/hal_stm32_nvm.c $(FW_SRC))
+$(call stm32_model_test,test_stm32_board,hal/stm32f4/hal_stm32_time.c hal/stm32f4/hal_stm32_tick.c \
+    hal/stm32f4/hal_stm32_board.c,-DSTM32_MODEL_OWN_CLOCK)
+$(call stm32_model_test,test_stm32_ecu,hal/stm32f4/hal_stm32_ecu.c hal/stm32f4/hal_stm32_nvm.c \
+    $(ECU_LOOP_SRC) $(FW_SRC))
 
 STM32_HOST_TESTS := test_stm32_can test_hal_stm32 test_stm32_nvm test_stm32_board test_stm32_ecu
 
+## the STM32 drivers on register models, the HAL conformance suite on bxCAN, the time base
 test-stm32-host: $(addprefix $(HOSTSAN)/,$(STM32_HOST_TESTS))
 	@set -e; for t in $(STM32_HOST_TESTS); do echo "== host: $$t (register models)"; $(HOSTSAN)/$$t; done
 
@@ -127,6 +124,7 @@ test-stm32-host: $(addprefix $(HOSTSAN)/,$(STM32_HOST_TESTS))
 
 STM32_QEMU := scripts/run_stm32_qemu.sh
 
+## the STM32 image's bring-up and self-check on QEMU's netduinoplus2
 test-stm32-qemu: $(STM32_OUT)/pfe_stm32_qemu.elf $(HOST)/selfcheck $(M4_OUT)/pfe_mps2.elf
 	$(HOST)/selfcheck $(ROADS)/hilly.csv > $(STM32_OUT)/selfcheck_host.txt
 	$(M4_RUN) $(M4_OUT)/pfe_mps2.elf > $(STM32_OUT)/selfcheck_mps2.txt
@@ -152,11 +150,13 @@ $(STM32_DEPS_STAMP): scripts/deps.sh
 	@touch $@
 STM32_BENCH_PACKAGES := openocd stlink-tools
 
+## the STM32 bench guide's commands that run here
 test-stm32-bench-guide: $(STM32_DEPS_STAMP) $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32.hex \
         $(STM32_OUT)/pfe_stm32.bin $(HOST)/pfe_replay $(HOST)/pfe_record $(HOST)/run_report \
         $(BUILD)/e2e/payload/drive.log
 	sh tests/stm32/bench_guide.sh $(STM32_OUT) $(HOST) $(BUILD)/e2e/payload/drive.log
 
+## test-stm32-host, test-stm32-qemu and test-stm32-bench-guide
 test-stm32: test-stm32-host test-stm32-qemu test-stm32-bench-guide
 
 # ---------------------------------------------------------------- bench (make bench)
@@ -166,6 +166,7 @@ test-stm32: test-stm32-host test-stm32-qemu test-stm32-bench-guide
 # heap section, none), and the ECU's tick over the replayed drive on
 # netduinoplus2, in instructions (TIM2 under -icount: exact).
 .PHONY: stm32-bench
+## bench: the STM32 image's sizes and its ECU tick on netduinoplus2
 stm32-bench: $(STM32_OUT)/pfe_stm32.elf $(STM32_OUT)/pfe_stm32_bench.elf $(BUILD)/e2e/payload/drive.log \
         $(M4_OUT)/pfe_ecu_mps2.elf
 	@$(M4_CHECK) --bench pfe_stm32 $(STM32_OUT)/pfe_stm32.elf
@@ -197,5 +198,6 @@ $(STM32_STACK_OUT)/pfe_stm32.elf: $(STM32_OUT)/pfe_stm32.elf scripts/stack_check
 	@cmp -s $(@D)/analysed.bin $(@D)/product.bin || { echo "stack-check: the analysis link of" \
 	    "pfe_stm32 differs from $(STM32_OUT)/pfe_stm32.elf"; exit 1; }
 
+## worst-case stack of the STM32 image
 stm32-stack-check: $(STM32_STACK_OUT)/pfe_stm32.elf
 	$(STACK_CHECK) --elf $(STM32_OUT)/pfe_stm32.elf --ci $(STM32_STACK_OUT)/*.ci --su $(STM32_STACK_OUT)/*.su

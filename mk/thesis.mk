@@ -1,16 +1,16 @@
 # The thesis's claims on the host: node model against object model (5.2),
-# fuel bounds (5.1) and route choice (sim_host/node_model.h, fuel_bounds.h,
+# fuel bounds (5.1) and route choice (sim_host/ref/node_model.h, fuel_bounds.h,
 # route_gen.h).
 #
 # Include from the top-level Makefile after mk/vcan.mk (it uses HOST,
 # HOSTSAN, ROADS, FW_SRC, FW_HDR, HOST_CFLAGS, SAN_CFLAGS, DEPS_STAMP):
 #
 #   include mk/thesis.mk
-#   test: thesis-test
+#   test: test-thesis
 #   bench: thesis-bench
 #
 # Targets:
-#   thesis-test     the node-model, truck-length and fuel-bound tests (ASan,
+#   test-thesis     the node-model, truck-length and fuel-bound tests (ASan,
 #                   UBSan; test_truck_length: object against node with 16.5 m
 #                   trucks on the three roads and 250 random routes), the
 #                   property test over 250 seeded hilly routes included, and
@@ -24,7 +24,7 @@
 #   thesis-report   the tables 5.1 to 5.5 analogues on the three roads with
 #                   N = 5, beside the thesis's values (5.4: both fuel models
 #                   fed the node model's mean speeds), the same with 16.5 m
-#                   trucks under both spacing policies (sim_host/node_model.h),
+#                   trucks under both spacing policies (sim_host/ref/node_model.h),
 #                   the same without
 #                   drag reduction (the
 #                   cause of the uphill difference), and the route choice on
@@ -33,47 +33,23 @@
 #                   against flat and detour against bypass (not guaranteed:
 #                   the thesis's bounds' assumptions fail, exit 3)
 
-THESIS_SRC := sim_host/node_model.c sim_host/fuel_bounds.c sim_host/route_gen.c \
-              sim_host/ref_model.c sim_host/road_csv.c
-THESIS_HDR := sim_host/node_model.h sim_host/fuel_bounds.h sim_host/route_gen.h \
-              sim_host/ref_model.h sim_host/road_csv.h
-ROUTES := sim_host/routes
+ROUTES := sim_host/data/routes
 ROUTE_NAMES := ridge detour rolling bypass
 THESIS_ROADS := $(foreach r,$(ROAD_NAMES),--road $(ROADS)/$(r).csv)
 THESIS_BENCH_N := 5 10 20 50
 VALGRIND_STAMP := $(BUILD)/.deps-valgrind
 
-.PHONY: thesis-test thesis-bench thesis-report
+.PHONY: test-thesis thesis-bench thesis-report
 
-$(HOST)/platoon_compare: sim_host/platoon_compare.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/platoon_compare.c $(THESIS_SRC) $(FW_SRC) -lm
 
-$(HOST)/route_choice: sim_host/route_choice.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Ifirmware -o $@ sim_host/route_choice.c $(THESIS_SRC) $(FW_SRC) -lm
 
-$(HOST)/routegen: sim_host/routegen.c sim_host/route_gen.c sim_host/route_gen.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -o $@ sim_host/routegen.c sim_host/route_gen.c
 
-$(HOSTSAN)/routegen: sim_host/routegen.c sim_host/route_gen.c sim_host/route_gen.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -o $@ sim_host/routegen.c sim_host/route_gen.c
 
-$(HOSTSAN)/test_node_model: tests/host/test_node_model.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(THESIS_SRC) $(FW_SRC) -lcmocka -lm
 
-$(HOSTSAN)/test_truck_length: tests/host/test_truck_length.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(THESIS_SRC) $(FW_SRC) -lcmocka -lm
+$(call host_test,test_truck_length,tests/host/test_truck_length.c)
 
-$(HOSTSAN)/test_fuel_bounds: tests/host/test_fuel_bounds.c $(THESIS_SRC) $(THESIS_HDR) $(FW_SRC) $(FW_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -Ifirmware -o $@ $< $(THESIS_SRC) $(FW_SRC) -lcmocka -lm
-
-thesis-test: $(HOSTSAN)/test_node_model $(HOSTSAN)/test_truck_length $(HOSTSAN)/test_fuel_bounds $(HOSTSAN)/routegen
+## node model, truck length and fuel bounds tests, the 250-route property test, the bundled routes regenerated
+test-thesis: $(HOSTSAN)/test_node_model $(HOSTSAN)/test_truck_length $(HOSTSAN)/test_fuel_bounds $(HOSTSAN)/routegen
 	@echo "== host: test_node_model"; $(HOSTSAN)/test_node_model $(ROADS)
 	@echo "== host: test_truck_length"; $(HOSTSAN)/test_truck_length $(ROADS)
 	@echo "== host: test_fuel_bounds"; $(HOSTSAN)/test_fuel_bounds
@@ -90,6 +66,7 @@ $(VALGRIND_STAMP): scripts/deps.sh
 
 # Instruction counts: callgrind counts only while node_sim_run or
 # object_sim_run runs (loading the road and the rest are left out).
+## bench: instructions of the node and object models for N = 5, 10, 20, 50
 thesis-bench: $(HOST)/platoon_compare $(VALGRIND_STAMP)
 	@set -e; mkdir -p $(BUILD)/callgrind; for n in $(THESIS_BENCH_N); do \
 	    for m in node object; do \
@@ -108,6 +85,7 @@ thesis-bench: $(HOST)/platoon_compare $(VALGRIND_STAMP)
 	done
 	@$(HOST)/platoon_compare --bench --repeat 21 --road $(ROADS)/hilly.csv --vehicles 5
 
+## the thesis's tables 5.1 to 5.5 on the three roads, and the route choice on the bundled routes
 thesis-report: $(HOST)/platoon_compare $(HOST)/route_choice
 	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5
 	$(HOST)/platoon_compare $(THESIS_ROADS) --vehicles 5 --length-m 16.5 --repeat 1

@@ -1,5 +1,5 @@
-# The truck a module runs on: calibration files (sim_host/truck_cal.h) and
-# logs of foreign trucks to test against (sim_host/truckgen.c).
+# The truck a module runs on: calibration files (sim_host/lib/truck_cal.h) and
+# logs of foreign trucks to test against (sim_host/tools/truckgen.c).
 #
 #   test-truck-cal    the calibration file parser: fields, units, sections,
 #                     errors (CMocka, ASan, UBSan); every tool's --calib
@@ -12,11 +12,11 @@
 #                     generated at test time, replayed on the host, judged
 #                     (tests/host/foreign_trucks.sh)
 #   foreign-bench     the same, printing only its bench: lines
-#   check-replay-calib  a foreign truck's log through pfe_ecu_replay --calib
+#   test-replay-calib  a foreign truck's log through pfe_ecu_replay --calib
 #                     FILE and through the Cortex-M4 image built for FILE:
 #                     identical records, unlike the default calibration's
 #   firmware CALIB=FILE  also builds $(M4_OUT)/pfe_ecu_mps2_calib.elf, the
-#                     replay image with FILE compiled in (sim_host/cal2c.c);
+#                     replay image with FILE compiled in (sim_host/tools/cal2c.c);
 #                     the bundled trucks have images of their own:
 #                     $(M4_OUT)/pfe_ecu_mps2_truck12t.elf, ..._truck60t.elf
 #
@@ -25,33 +25,27 @@
 #
 # Included from the top-level Makefile.
 
-TRUCKS := sim_host/trucks
+TRUCKS := sim_host/data/trucks
 TRUCK_GEN := $(BUILD)/gen
 
-.PHONY: test-truck-cal test-foreign-trucks foreign-bench check-replay-calib
+.PHONY: test-truck-cal test-foreign-trucks foreign-bench test-replay-calib
 HOSTILE_RANDOM_XFAIL ?= 1
 FOREIGN_TOOLS := $(HOST)/truckgen $(HOST)/truck_judge $(HOST)/pfe_ecu_replay
 
-$(HOSTSAN)/test_truck_cal: tests/host/test_truck_cal.c $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(SAN_CFLAGS) -I. -Ifirmware -o $@ $< $(TRUCK_CAL_SRC) $(FW_SRC) -lcmocka
 
+## the truck calibration parser, and every tool's --calib
 test-truck-cal: $(HOSTSAN)/test_truck_cal $(HOST)/pfe_ecu_replay $(HOST)/pfe_ecu $(HOST)/drivegen \
         $(HOST)/run_report
 	@echo "== host: test_truck_cal"; $(HOSTSAN)/test_truck_cal $(TRUCKS)
 	@sh tests/host/truck_cal_tools.sh $(HOST) $(TRUCKS) $(BUILD)/truck-cal $(ROADS)/uphill.csv
 
-$(HOST)/truckgen: sim_host/truckgen.c $(TRUCK_CAL_SRC) $(REF_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/truckgen.c $(TRUCK_CAL_SRC) $(REF_SRC) $(FW_SRC) -lm
 
-$(HOST)/truck_judge: sim_host/truck_judge.c sim_host/canlog.c $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/truck_judge.c sim_host/canlog.c $(FW_SRC) -lm
 
+## foreign trucks' logs (12 t, 60 t, hostile variants) replayed on the host and judged
 test-foreign-trucks: $(FOREIGN_TOOLS)
 	@HOSTILE_RANDOM_XFAIL=$(HOSTILE_RANDOM_XFAIL) sh tests/host/foreign_trucks.sh $(HOST) $(TRUCKS) $(BUILD)/foreign
 
+## bench: the foreign-truck figures
 foreign-bench: $(FOREIGN_TOOLS)
 	@HOSTILE_RANDOM_XFAIL=$(HOSTILE_RANDOM_XFAIL) sh tests/host/foreign_trucks.sh $(HOST) $(TRUCKS) \
 	    $(BUILD)/foreign-bench > $(BUILD)/foreign-bench.txt 2>&1 || { cat $(BUILD)/foreign-bench.txt; exit 1; }
@@ -59,9 +53,6 @@ foreign-bench: $(FOREIGN_TOOLS)
 
 # ---------------------------------------------------------------- calibrated Cortex-M4 images
 
-$(HOST)/cal2c: sim_host/cal2c.c $(TRUCK_CAL_SRC) $(FW_SRC) $(FW_HDR) $(SIM_HDR) | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -I. -Ifirmware -o $@ sim_host/cal2c.c $(TRUCK_CAL_SRC) $(FW_SRC)
 
 TRUCK_NAMES := truck12t truck60t
 .SECONDARY: $(patsubst %,$(TRUCK_GEN)/calib_%.c,$(TRUCK_NAMES) user)
@@ -93,6 +84,7 @@ $(CALIB_LOG): $(HOST)/truckgen $(TRUCKS)/truck12t.cal
 	$(HOST)/truckgen --calib $(TRUCKS)/truck12t.cal --profile 0:3,80:40,50:20,85:25,0:20 --start-s 10 \
 	    --others 60 --ssi --format log --out $@
 
-check-replay-calib: $(HOST)/pfe_ecu_replay $(M4_OUT)/pfe_ecu_mps2_truck12t.elf $(M4_OUT)/pfe_ecu_mps2.elf $(CALIB_LOG)
+## a foreign truck's log through pfe_ecu_replay --calib and the image built for it: identical records
+test-replay-calib: $(HOST)/pfe_ecu_replay $(M4_OUT)/pfe_ecu_mps2_truck12t.elf $(M4_OUT)/pfe_ecu_mps2.elf $(CALIB_LOG)
 	sh tests/replay/calib_host_vs_m4.sh $(BUILD)/foreign-m4 $(HOST) $(M4_OUT)/pfe_ecu_mps2_truck12t.elf \
 	    $(M4_OUT)/pfe_ecu_mps2.elf $(TRUCKS)/truck12t.cal $(CALIB_LOG)

@@ -5,14 +5,14 @@
 #
 #   include mk/m4.mk
 #   include mk/vcan.mk
-#   test: vcan-test
+#   test: test-vcan
 #
-# or try it alone:  make -f mk/vcan.mk vcan-test
+# or try it alone:  make -f mk/vcan.mk test-vcan
 #
-# This machine's kernel has no CAN at all, so `vcan-test` runs everything
+# This machine's kernel has no CAN at all, so `test-vcan` runs everything
 # through scripts/vcan_vm.sh: natively where this machine can have a vcan0,
 # else in one boot of Debian's kernel under QEMU (TCG, about 10 s). One boot
-# runs every check, through a driver script ($(VCAN_DRIVER)):
+# runs every check, through a driver script (tests/e2e/vcan_checks.sh):
 #   test_guard           the real-bus guard: lo refused, vcan0 allowed, an
 #                        slcan interface on a pseudo-terminal refused
 #   test_hal_socketcan   the conformance suite (tests/hal/hal_conformance.h)
@@ -26,8 +26,8 @@
 # san/lib/, and the driver.
 #
 # Targets:
-#   vcan-test         build, run all of the above, print the VM's run time
-#   vcan-test-native  the ASan + UBSan builds, run right here: test_guard
+#   test-vcan         build, run all of the above, print the VM's run time
+#   test-vcan-native  the ASan + UBSan builds, run right here: test_guard
 #                     (vcan and slcan tests skipped on a kernel without CAN),
 #                     test_hal_socketcan (exit 77, skipped, without vcan0)
 #   vcan-build        build both flavours, run nothing
@@ -158,161 +158,59 @@ $(VCAN_SAN_LIBS): $(VCAN_SAN_TESTS)
 	cp -L $$libs $(@D)/ && echo "copied to $(@D):" $$libs
 	@touch $@
 
-# The driver that one VM boot runs: every check, whatever fails before it.
-# Prints "vcan: NAME ok" or "vcan: NAME FAILED (exit N)" for each, and exits
-# with the number of failed checks. Its argument: the interface (vcan0).
-define vcan__driver
-#!/bin/sh
-# Every vcan check in one run: the SocketCAN backend's guard and conformance
-# tests, then can-utils round trips on the interface $$1 (default vcan0).
-set -u
-dir=$$(cd "$$(dirname "$$0")" && pwd)
-ifc=$${1:-vcan0}
-failed=0
-tmp=$$(mktemp -d)
-
-check() {
-    name=$$1
-    shift
-    echo "== vcan: $$name"
-    "$$@"
-    rc=$$?
-    if [ "$$rc" -eq 0 ]; then
-        echo "vcan: $$name ok"
-    else
-        echo "vcan: $$name FAILED (exit $$rc)"
-        failed=$$((failed + 1))
-    fi
-}
-
-# Waits until process $$1 (a candump) has a receive filter matching PATTERN
-# $$2 on the interface (/proc/net/can lists every one), so that no frame is
-# sent before it listens. Fails if the process ends first.
-wait_listening() {
-    for _ in $$(seq 100); do
-        grep -q "$$2" /proc/net/can/rcvlist_* 2>/dev/null && return 0
-        kill -0 "$$1" 2>/dev/null || { echo "candump ended early"; return 1; }
-        sleep 0.05
-    done
-    echo "no CAN socket matching '$$2' after 5 s"
-    kill "$$1"
-    return 1
-}
-
-# $$1: candump's output; $$2: the expected lines without timestamps.
-same_frames() {
-    got=$$(cut -d' ' -f2- "$$1")
-    if [ "$$got" != "$$2" ]; then
-        echo "candump got:"
-        cat "$$1"
-        echo "expected:"
-        echo "$$2"
-        return 1
-    fi
-}
-
-# cansend -> candump, candump keeping only PGN 65265 (CCVS1) from any
-# source at any priority.
-cansend_candump() {
-    candump -L -n 3 -T 10000 "$$ifc,18FEF100:03FFFF00" >"$$tmp/dump1" &
-    pid=$$!
-    wait_listening "$$pid" 03ffff00 || return 1
-    cansend "$$ifc" 18FEF117#0011223344556677 &&
-        cansend "$$ifc" 18FEF200#01 &&
-        cansend "$$ifc" 0CFEF100#A1B2 &&
-        cansend "$$ifc" 123#DEADBEEF &&
-        cansend "$$ifc" 18FEF1FE# || { kill "$$pid"; return 1; }
-    wait "$$pid" || return 1
-    same_frames "$$tmp/dump1" "$$ifc 18FEF117#0011223344556677
-$$ifc 0CFEF100#A1B2
-$$ifc 18FEF1FE#"
-}
-
-# canplayer -> candump: a log replayed with its own pacing comes back as is.
-canplayer_candump() {
-    printf '%s\n' "(1700000000.000000) $$ifc 18FEF100#00C0160000000000" \
-        "(1700000000.010000) $$ifc 0CF01313#E87D" \
-        "(1700000000.020000) $$ifc 7FF#" >"$$tmp/in.log"
-    candump -L -n 3 -T 10000 "$$ifc,7FF:7FF,0CF01313:1FFFFFFF,18FEF100:1FFFFFFF" >"$$tmp/dump2" &
-    pid=$$!
-    wait_listening "$$pid" 1fffffff || return 1
-    canplayer -I "$$tmp/in.log" || { kill "$$pid"; return 1; }
-    wait "$$pid" || return 1
-    same_frames "$$tmp/dump2" "$$ifc 18FEF100#00C0160000000000
-$$ifc 0CF01313#E87D
-$$ifc 7FF#"
-}
-
-# cangen -> candump: 50 random frames, all of them received.
-cangen_candump() {
-    candump -L -n 50 -T 10000 "$$ifc,0:0" >"$$tmp/dump3" &
-    pid=$$!
-    wait_listening "$$pid" "$$ifc  *000  *00000000" || return 1
-    cangen "$$ifc" -n 50 -g 1 || { kill "$$pid"; return 1; }
-    wait "$$pid" || return 1
-    n=$$(wc -l <"$$tmp/dump3")
-    [ "$$n" -eq 50 ] || { echo "candump got $$n frames of 50"; return 1; }
-}
-
-check test_guard "$$dir/test_guard" "$$ifc"
-check test_hal_socketcan "$$dir/test_hal_socketcan" "$$ifc"
-if [ -x "$$dir/san/test_guard" ]; then
-    check test_guard_asan_ubsan "$$dir/san/test_guard" "$$ifc"
-    check test_hal_socketcan_asan_ubsan "$$dir/san/test_hal_socketcan" "$$ifc"
-fi
-check cansend_candump cansend_candump
-check canplayer_candump canplayer_candump
-check cangen_candump cangen_candump
-rm -rf "$$tmp"
-echo "vcan: $$failed check(s) failed"
-exit "$$failed"
-endef
-
-# The folder first: make expands $(file ...) before the recipe's first line.
-$(VCAN_DRIVER): $(VCAN_ROOT)/mk/vcan.mk | $(VCAN_PAYLOAD)
-	$(file >$@,$(vcan__driver))
+# The driver that one VM boot runs (tests/e2e/vcan_checks.sh): every check,
+# whatever fails before it; "vcan: NAME ok" or "vcan: NAME FAILED (exit N)"
+# for each, and the number of failed checks as its exit status.
+$(VCAN_DRIVER): $(VCAN_ROOT)/tests/e2e/vcan_checks.sh | $(VCAN_PAYLOAD)
+	cp $< $@
 	@chmod 0755 $@
-	@echo "wrote $@"
 
 $(VCAN_PAYLOAD):
 	mkdir -p $@
 
-.PHONY: vcan-help vcan-deps vcan-build vcan-test vcan-test-native vcan-clean vcan-vm-clean
+.PHONY: vcan-help vcan-deps vcan-build test-vcan test-vcan-native vcan-clean vcan-vm-clean
 
+## the vcan rules' own targets (mk/vcan.mk)
 vcan-help:
 	@echo "mk/vcan.mk: the SocketCAN backend on vcan0; see its header."
-	@echo "  vcan-test         static tests + can-utils checks in one run of scripts/vcan_vm.sh"
-	@echo "  vcan-test-native  ASan/UBSan builds on this machine (skips what needs vcan0)"
+	@echo "  test-vcan         static tests + can-utils checks in one run of scripts/vcan_vm.sh"
+	@echo "  test-vcan-native  ASan/UBSan builds on this machine (skips what needs vcan0)"
 	@echo "  vcan-build        build both flavours"
 	@echo "  vcan-deps         install the Debian packages"
 	@echo "  vcan-clean        remove $(VCAN_OUT)"
 	@echo "  vcan-vm-clean     remove the VM's cache $(VCAN_VM_DIR)"
 
+## install the packages of the vcan tests and of the VM
 vcan-deps:
 	@$(VCAN_ROOT)/scripts/deps.sh qemu-system-x86 busybox-static cpio can-utils binutils
 
+## build the vcan tests, both flavours, run nothing
 vcan-build: $(VCAN_STATIC_TESTS) $(VCAN_DRIVER) $(VCAN_SAN_TESTS) $(VCAN_SAN_LIBS)
 
 # The time printed is the whole vcan_vm.sh run: VM boot, tests, power-off
 # (vcan_vm.sh --time adds the boot-to-command split).
-vcan-test: $(VCAN_STATIC_TESTS) $(VCAN_DRIVER) $(VCAN_SAN_TESTS) $(VCAN_SAN_LIBS)
+## the SocketCAN backend on vcan0 in the VM: guard, conformance, can-utils round trips
+test-vcan: $(VCAN_STATIC_TESTS) $(VCAN_DRIVER) $(VCAN_SAN_TESTS) $(VCAN_SAN_LIBS)
 	@t0=$$(date +%s%N); \
 	VCAN_VM_DIR=$(VCAN_VM_DIR) $(VCAN_VM) --time --timeout $(VCAN_TIMEOUT_S) \
 	    --payload $(VCAN_PAYLOAD) $(VCAN_VM_FLAGS) -- $(VCAN_DRIVER) $(VCAN_IF); rc=$$?; \
 	t1=$$(date +%s%N); ms=$$(( (t1 - t0) / 1000000 )); \
-	echo "vcan-test: vcan_vm.sh run took $$((ms / 1000)).$$(( (ms % 1000) / 100 )) s, exit $$rc"; \
+	echo "test-vcan: vcan_vm.sh run took $$((ms / 1000)).$$(( (ms % 1000) / 100 )) s, exit $$rc"; \
 	exit $$rc
 
 # 77: test_hal_socketcan found no vcan0 (skipped).
-vcan-test-native: $(VCAN_SAN_TESTS)
+## the vcan tests' ASan and UBSan builds run here (what needs vcan0 skipped)
+test-vcan-native: $(VCAN_SAN_TESTS)
 	$(VCAN_PAYLOAD)/san/test_guard $(VCAN_IF)
 	@$(VCAN_PAYLOAD)/san/test_hal_socketcan $(VCAN_IF); rc=$$?; \
-	if [ $$rc -eq 77 ]; then echo "vcan-test-native: test_hal_socketcan skipped (no $(VCAN_IF))"; \
+	if [ $$rc -eq 77 ]; then echo "test-vcan-native: test_hal_socketcan skipped (no $(VCAN_IF))"; \
 	elif [ $$rc -ne 0 ]; then exit $$rc; fi
 
+## remove the vcan outputs
 vcan-clean:
 	rm -rf $(VCAN_OUT)
 
+## remove the VM's cache (kernel, initramfs)
 vcan-vm-clean:
 	rm -rf $(VCAN_VM_DIR)
 

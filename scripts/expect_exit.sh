@@ -8,7 +8,7 @@
 # report only into OUTFILE, so that a log reader does not take it for a real
 # failure), then fails unless
 # the command exited with CODE and OUTFILE has each LINE as a whole line.
-# Used by `make -f mk/m4.mk m4-selftest` for runs that must fail in a known
+# Used by `make -f mk/m4.mk test-m4-selftest` for runs that must fail in a known
 # way as well as for those that must pass.
 
 set -u

@@ -33,7 +33,7 @@ set -u
 me=run_drive.sh
 here=$(cd "$(dirname "$0")" && pwd)
 
-# The replayer, the one place where the drive is sent: sim_host/pfe_replay
+# The replayer, the one place where the drive is sent: sim_host/tools/pfe_replay
 # (static, in the payload folder) with the log's timestamps as pacing; it
 # ends with its summary (frames sent, dropped, lateness). can-utils'
 # canplayer takes the same arguments: REPLAY_CMD="canplayer -I".

@@ -27,7 +27,7 @@
 
 set -u
 
-timeout_s=${M4_TIMEOUT_S:-120}
+timeout_s=${M4_TIMEOUT_S:-600}
 if [ "${1:-}" = "-t" ]; then
     if [ $# -lt 2 ]; then
         echo "usage: $0 [-t SECONDS] ELF [ARG ...]" >&2

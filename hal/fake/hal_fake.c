@@ -90,28 +90,10 @@ int hal_can_send(hal_can_t *can, const pfe_can_frame_t *frame)
     return 0;
 }
 
-int hal_can_receive(hal_can_t *can, hal_can_rx_t *out)
+hal_can_mem_port_t *hal_can_mem_port_of(hal_can_t *can, bool *open)
 {
-    if ((can == NULL) || !can->open || (out == NULL)) {
-        return HAL_EINVAL;
-    }
-    return hal_can_mem_port_receive(&can->port, out);
-}
-
-int hal_can_add_filter(hal_can_t *can, uint32_t id, uint32_t mask)
-{
-    if ((can == NULL) || !can->open) {
-        return HAL_EINVAL;
-    }
-    return hal_can_mem_port_add_filter(&can->port, id, mask);
-}
-
-int hal_can_remove_filter(hal_can_t *can, int index)
-{
-    if (can == NULL) {
-        return HAL_EINVAL;
-    }
-    return hal_can_mem_port_remove_filter(&can->port, index);
+    *open = can->open;
+    return &can->port;
 }
 
 void hal_can_get_stats(const hal_can_t *can, hal_can_stats_t *out)

@@ -32,7 +32,7 @@
 
 /* Instructions per SysTick decrement under -icount shift=0: 1 GHz virtual
  * instruction clock / 25 MHz processor clock. Measured, not only derived:
- * tests/m4/demo_image.c times loops of known length on every m4-selftest. */
+ * tests/m4/demo_image.c times loops of known length on every test-m4-selftest. */
 #define HAL_MPS2_ICOUNT_INSNS_PER_TICK 40U
 
 /* What two back-to-back calls of hal_mps2_icount_now() measure (-Os, GCC

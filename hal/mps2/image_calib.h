@@ -1,8 +1,8 @@
 /*
  * image_calib.h - the truck calibration compiled into a Cortex-M4 replay
  * image (hal/mps2/main_ecu.c), which reads no calibration file: the image
- * for a given truck links a file that sim_host/cal2c.c generated from that
- * truck's calibration file (sim_host/truck_cal.h), the default image
+ * for a given truck links a file that sim_host/tools/cal2c.c generated from that
+ * truck's calibration file (sim_host/lib/truck_cal.h), the default image
  * hal/mps2/calib_default.c. The host's pfe_ecu_replay --calib FILE and the
  * image built from FILE run the same configuration.
  */

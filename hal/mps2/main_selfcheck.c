@@ -2,9 +2,9 @@
  * main_selfcheck.c - the mps2-an386 image: known-answer run of the model.
  *
  * Runs pfe_selfcheck over the bundled hilly road (compiled in from
- * sim_host/roads/hilly.csv) for 1 and 5 trucks and prints the results
+ * sim_host/data/roads/hilly.csv) for 1 and 5 trucks and prints the results
  * through semihosting, in exactly the format of the host tool
- * sim_host/selfcheck.c, so that the two outputs can be compared byte for
+ * sim_host/tools/selfcheck.c, so that the two outputs can be compared byte for
  * byte. Exit status 0, or 1 if a run fails.
  */
 #include <stdint.h>

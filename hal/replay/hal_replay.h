@@ -17,7 +17,7 @@
  *
  * Portable C without heap or floating point: the Cortex-M4 image
  * (hal/mps2/main_ecu.c) reads and writes through semihosting, the host tool
- * (sim_host/ecu_replay.c) through stdio. The platform hands in two byte
+ * (sim_host/tools/pfe_ecu_replay.c) through stdio. The platform hands in two byte
  * streams, an input log and an output record.
  *
  * Input: candump's log format (`candump -L`), one frame a line,
@@ -27,7 +27,7 @@
  *     (000.011063)  can0  18FEF100   [8]  FF 12 34 56 78 9A BC DE
  *     (2026-12-01 10:00:00.123456)  can0  123   [2]  0A 0B
  * (a -t A date is read as UTC; -t d's deltas are read as times since the
- * start, as sim_host/canlog.h reads them unless told otherwise), each line
+ * start, as sim_host/lib/log/log.h reads them unless told otherwise), each line
  * on its own, so that the two forms may even be mixed. Timestamps have 6 or
  * 9 fraction digits (nine are truncated to microseconds); ids are 3 hex
  * digits (11-bit) or 8 (29-bit); data are 0 to 8 bytes as pairs of hex
@@ -45,10 +45,10 @@
  * counted. Lines longer than HAL_REPLAY_LINE_MAX characters are bad (a
  * binary file ends up there or as a syntax error, never as a frame).
  * tests/replay/log_vectors.h holds the lines this reader and the host's
- * (sim_host/canlog.h) are both tested on.
+ * (sim_host/lib/log/log.h) are both tested on.
  *
  * A host may hand in frames instead of text (hal_replay_init_source()):
- * the host tools read logs through sim_host/canlog.h, one parser for
+ * the host tools read logs through sim_host/lib/log/log.h, one parser for
  * every format, and the bus does the rest as for a text log.
  *
  * Output: `(seconds.microseconds) IFACE ID#DATA\n`, ids as 3 or 8 upper-case

@@ -1,6 +1,6 @@
 /*
  * hal_replay_ecu.h - the ECU run over a replayed log (hal_replay.h) in
- * logical time: the same program on the host (sim_host/ecu_replay.c) and on
+ * logical time: the same program on the host (sim_host/tools/pfe_ecu_replay.c) and on
  * the emulated Cortex-M4 (hal/mps2/main_ecu.c).
  *
  * The ECU starts at the first log frame's time with erased NVM and ticks
@@ -71,7 +71,7 @@ int hal_replay_ecu_init(hal_replay_ecu_t *run, hal_replay_read_fn read, void *re
                         hal_replay_write_fn write, void *write_ctx, const pfe_ecu_config_t *cfg);
 
 /* The same with the log's frames from source (hal_replay_init_source()),
- * as the host tool reads them (sim_host/replay_source.h). */
+ * as the host tool reads them (sim_host/lib/replay_source.h). */
 int hal_replay_ecu_init_source(hal_replay_ecu_t *run, hal_replay_source_fn source, void *source_ctx,
                                hal_replay_write_fn write, void *write_ctx,
                                const pfe_ecu_config_t *cfg);

@@ -10,7 +10,7 @@
  * pass finished before the next deadline (hal_stm32_ecu.h, tested on the
  * host with the drivers on the register models). A pass later than a whole tick
  * counts the ticks lost (pfe_ecu_note_overrun()) and restarts the
- * deadlines from now, as sim_host/ecu_main.c does; ticks that stay late
+ * deadlines from now, as sim_host/tools/pfe_ecu.c does; ticks that stay late
  * stop feeding the watchdog, which then resets the module
  * (hal_stm32_board.h: 1.6 to 4.5 s), and the next start reports it
  * (ResetCause 1).

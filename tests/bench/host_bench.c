@@ -11,10 +11,10 @@
  */
 #include <stdio.h>
 
-#include "../../firmware/pfe_calib.h"
-#include "../../firmware/pfe_platoon.h"
-#include "../../sim_host/road_csv.h"
-#include "../../sim_host/sim_compare.h"
+#include "firmware/pfe_calib.h"
+#include "firmware/pfe_platoon.h"
+#include "lib/road_csv.h"
+#include "ref/sim_compare.h"
 
 int main(int argc, char **argv)
 {

@@ -8,7 +8,7 @@
 #               the kernel's timing, which the capture does not show.
 #
 #   tests/e2e/ecu_vcan.sh   (run from its payload folder, with vcan0 up:
-#                            scripts/vcan_vm.sh does it, see the Makefile's e2e-test)
+#                            scripts/vcan_vm.sh does it, see the Makefile's test-e2e)
 #
 # The folder holds pfe_ecu, ecu_check, pfe_faults, drive.log and faults.log.
 # Exit status 0 when both verdicts pass and the ECU stopped cleanly on
@@ -48,7 +48,7 @@ run drive "$dir/drive.log" || rc=1
 if ! "$dir/ecu_check" "$tmp/drive.capture.log"; then
     # An intermittent rate mismatch over vcan (one LFE1 frame, 27 to 37 %
     # off, in about one run in three; never in logical time, make
-    # check-replay) is not understood yet: the drive runs once more and that
+    # test-replay-m4) is not understood yet: the drive runs once more and that
     # run decides, both results printed.
     cp "$tmp/drive.capture.log" "$tmp/drive.first.capture.log"
     echo "e2e drive: ecu_check failed on the first run; running the drive once more"

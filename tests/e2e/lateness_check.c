@@ -6,7 +6,7 @@
  *
  * SCHEDULE is the log that was replayed, CAPTURE what `candump -L` recorded
  * on the receiving side (kernel receive timestamps), both read with
- * sim_host/canlog.h. The two must hold the same frames in the same order
+ * sim_host/lib/log/log.h. The two must hold the same frames in the same order
  * (id, length, data, FD flags; interfaces and timestamps aside), else the
  * first difference is reported and the exit status is 1.
  *
@@ -26,8 +26,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "sim_host/canlog.h"
-#include "sim_host/lateness.h"
+#include "lib/log/log.h"
+#include "lib/lateness.h"
 
 static int open_log(canlog_reader_t *r, const char *path)
 {

@@ -1,13 +1,13 @@
 #!/bin/sh
 # pfe_replay on vcan: round trips, other formats, pacing against canplayer,
 # the real-bus guard. Runs from its payload folder on a machine with vcan0
-# and vcan1 up (scripts/vcan_vm.sh; `make replay-vcan-test`).
+# and vcan1 up (scripts/vcan_vm.sh; `make test-replay-vcan`).
 #
 #   replay_vcan.sh
 #
 # The folder holds pfe_replay, lateness_check, slcan_run (static programs),
 # drive.log (the e2e drive, a candump log) and logs/ (the committed logs of
-# sim_host/logs, maybe none). can-utils (candump, canplayer, cangen,
+# sim_host/data/logs, maybe none). can-utils (candump, canplayer, cangen,
 # log2asc) come with the VM.
 #
 # Checks, each printed "replay: NAME ok" or "replay: NAME FAILED":

@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "capture.h"
+#include "lib/capture.h"
 
 #define OP_RAW 0U
 #define OP_RUN 6U

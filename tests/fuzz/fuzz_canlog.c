@@ -1,6 +1,6 @@
 /*
  * fuzz_canlog.c - libFuzzer target: the CAN log reader of the host tools
- * (sim_host/canlog.h): candump log, candump's printed output, Vector ASC.
+ * (sim_host/lib/log/log.h): candump log, candump's printed output, Vector ASC.
  *
  * Input: byte 0 chooses the format asked for (bits 0-2: auto, log, printed,
  * printed-delta, asc; others auto) and the error mode (bit 3: skip, else
@@ -20,7 +20,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "canlog.h"
+#include "lib/log/log.h"
 #include "fuzz_check.h"
 
 static canlog_reader_t g_reader;  /* about 100 KiB each: not on the stack */
@@ -113,7 +113,7 @@ static uint64_t pass(canlog_reader_t *r, size_t size, bool stop_mode, uint64_t *
         const uint64_t fields[5] = {f.time_us, f.line, f.id, ((uint64_t)f.len << 8) | f.fd_flags,
                                     ((uint64_t)f.fd << 8) | (uint8_t)f.dir};
         const uint8_t *bytes[3] = {(const uint8_t *)fields, f.data, (const uint8_t *)f.iface};
-        /* A remote frame's data bytes are not written (canlog.h). */
+        /* A remote frame's data bytes are not written (lib/log/log.h). */
         const bool remote = ((f.id & CANLOG_RTR_FLAG) != 0U) && !f.fd;
         const size_t lens[3] = {sizeof fields, remote ? 0U : f.len, strlen(f.iface)};
         for (uint32_t k = 0U; k < 3U; k++) {

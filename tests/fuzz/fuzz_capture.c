@@ -1,6 +1,6 @@
 /*
  * fuzz_capture.c - libFuzzer target: the capture reader of the judge and
- * the checkers (sim_host/capture.h), through capture_load() on a file.
+ * the checkers (sim_host/lib/capture.h), through capture_load() on a file.
  *
  * Input: the file (held in a memfd, read through its /proc/self/fd path).
  *
@@ -20,7 +20,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
-#include "capture.h"
+#include "lib/capture.h"
 #include "fuzz_check.h"
 
 static int g_fd = -1;

@@ -1,6 +1,6 @@
 /*
  * fuzz_dbc.c - libFuzzer target: the DBC reader of the host tools and tests
- * (sim_host/dbc.h), seeded with can_dbc/pfe.dbc.
+ * (sim_host/lib/dbc.h), seeded with can_dbc/pfe.dbc.
  *
  * Input: the DBC text.
  *
@@ -17,7 +17,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "dbc.h"
+#include "lib/dbc.h"
 #include "fuzz_check.h"
 
 /* Last bit (as the DBC numbers them) of a big-endian signal: the start bit

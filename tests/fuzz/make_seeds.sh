@@ -21,7 +21,7 @@ export TZ=UTC LC_ALL=C
 
 head -n 50 "$drive" > "$tmp/drive.log"
 for road in flat uphill hilly; do
-    gzip -dc "sim_host/logs/$road.log.gz" | head -n 50 > "$tmp/$road.log"
+    gzip -dc "sim_host/data/logs/$road.log.gz" | head -n 50 > "$tmp/$road.log"
 done
 
 # candump's printed view (-t a) of a candump log
@@ -55,7 +55,7 @@ cp "$tmp/flat.log" "$dir/capture/flat"
 # ecu: the drive's first 250 frames (a whole grade preview) and 15 s more;
 # the hilly road's first 120 frames and 10 s more
 "$ecu_seed" "$drive" 250 1500 "$dir/ecu/drive_start"
-gzip -dc sim_host/logs/hilly.log.gz | head -n 120 > "$tmp/hilly120.log"
+gzip -dc sim_host/data/logs/hilly.log.gz | head -n 120 > "$tmp/hilly120.log"
 "$ecu_seed" "$tmp/hilly120.log" 120 1000 "$dir/ecu/hilly_start"
 
 # nvm: flags 0x0F (both slots: magic and CRC set by the target), then two

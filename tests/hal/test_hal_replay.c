@@ -403,7 +403,7 @@ static uint8_t hex_byte(const char *p)
     return (uint8_t)v;
 }
 
-/* Each line of tests/replay/log_vectors.h alone, as sim_host/canlog.c is
+/* Each line of tests/replay/log_vectors.h alone, as sim_host/lib/log/ is
  * tested on it (tests/host/test_canlog.c). */
 static void test_shared_log_vectors(void **state)
 {

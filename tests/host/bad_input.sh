@@ -33,7 +33,7 @@ cp "$T/roadgen" "$W/in/binary"
 head -c 4000000 /dev/zero | tr '\0' '7' >"$W/in/huge"
 printf '(0.000000) vcan0 18FEF100#FF005AFFFFFFFFFF\n' >"$W/in/one.log"
 MISSING=$W/in/no-such-file
-FLAT=sim_host/roads/flat.csv
+FLAT=sim_host/data/roads/flat.csv
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:exitcode=99
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=98
 

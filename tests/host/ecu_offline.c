@@ -6,7 +6,7 @@
  *   ecu_offline DRIVE.log CAPTURE.log [--phase-us P] [--scale-fuel F]
  *
  * Writes CAPTURE.log in candump's log format: every frame of DRIVE.log
- * (J1939 frames only, read by sim_host/capture.h) at its own time, and the
+ * (J1939 frames only, read by sim_host/lib/capture.h) at its own time, and the
  * module's answers (source address 0x8C) 100 us after each tick. The ECU
  * starts 1 s before the first frame, ticks every 10 ms with its first tick P
  * microseconds after that (default 3000), receives each frame at the first
@@ -23,10 +23,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../firmware/pfe_calib.h"
-#include "../../firmware/pfe_codec.h"
-#include "../../firmware/pfe_ecu.h"
-#include "../../sim_host/capture.h"
+#include "firmware/pfe_calib.h"
+#include "firmware/pfe_codec.h"
+#include "firmware/pfe_ecu.h"
+#include "lib/capture.h"
 
 #define START_BEFORE_US 1000000U
 #define STOP_AFTER_US 1500000U

@@ -1,6 +1,6 @@
 #!/bin/sh
-# Foreign-truck logs (sim_host/truckgen.c) through the firmware on the host
-# (pfe_ecu_replay), judged by sim_host/truck_judge.c:
+# Foreign-truck logs (sim_host/tools/truckgen.c) through the firmware on the host
+# (pfe_ecu_replay), judged by sim_host/tools/truck_judge.c:
 #   - a 12 t and a 60 t truck, no SSI, two senders of CCVS1 and LFE1, the
 #     engine's LFE1 and HRLFC, 220 unrelated PGNs, mid-drive, no claims:
 #     the printed form and the -L form hold the same drive; replayed (as

@@ -1,5 +1,5 @@
 #!/bin/sh
-# run_report's judge of the prediction (sim_host/prediction_judge.h) on
+# run_report's judge of the prediction (sim_host/ref/prediction_judge.h) on
 # captures made without a bus: the firmware's ECU run in simulated time
 # (tests/host/ecu_offline.c) on the hilly drive with 1.8 km grade previews
 # (150 samples of 12 m, as make run's drive).

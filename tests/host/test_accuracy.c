@@ -1,6 +1,6 @@
 /*
  * Host tests: the fixed-point model against the double-precision reference
- * on the thesis's three roads (sim_host/roads), N = 1 and N = 5, 90 km/h.
+ * on the thesis's three roads (sim_host/data/roads), N = 1 and N = 5, 90 km/h.
  *
  *   object model over 12 km: fuel within 0.1 %, speed rms within 0.05 km/h
  *   estimator on the drive as the bus carries it: fuel used within 0.1 %
@@ -23,10 +23,10 @@
 #include "pfe_estimator.h"
 #include "pfe_fixed.h"
 #include "pfe_platoon.h"
-#include "../../sim_host/drive_trace.h"
-#include "../../sim_host/ref_model.h"
-#include "../../sim_host/road_csv.h"
-#include "../../sim_host/sim_compare.h"
+#include "ref/drive_trace.h"
+#include "ref/ref_model.h"
+#include "lib/road_csv.h"
+#include "ref/sim_compare.h"
 
 static const char *g_roads_dir;
 

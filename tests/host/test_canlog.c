@@ -1,6 +1,6 @@
 /*
- * Tests of the CAN log reader and writer (sim_host/canlog.h) and of the
- * lateness histogram (sim_host/lateness.h).
+ * Tests of the CAN log reader and writer (sim_host/lib/log/log.h) and of the
+ * lateness histogram (sim_host/lib/lateness.h).
  *
  *     test_canlog [DRIVE_LOG]
  *
@@ -34,8 +34,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "canlog.h"
-#include "lateness.h"
+#include "lib/log/log.h"
+#include "lib/lateness.h"
 
 #define MAX_FRAMES 64
 #define PATH_LEN 4096

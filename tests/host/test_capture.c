@@ -1,7 +1,7 @@
 /*
- * Tests of the capture reader (sim_host/capture.h), the reference fed a
- * capture's inputs (sim_host/bus_ref.h) and the drive noise generator
- * (sim_host/drive_trace.h).
+ * Tests of the capture reader (sim_host/lib/capture.h), the reference fed a
+ * capture's inputs (sim_host/ref/bus_ref.h) and the drive noise generator
+ * (sim_host/ref/drive_trace.h).
  *
  *     test_capture
  *
@@ -28,9 +28,9 @@
 #include <unistd.h>
 
 #include "firmware/pfe_codec.h"
-#include "sim_host/bus_ref.h"
-#include "sim_host/capture.h"
-#include "sim_host/drive_trace.h"
+#include "ref/bus_ref.h"
+#include "lib/capture.h"
+#include "ref/drive_trace.h"
 
 #define PATH_LEN 4096
 #define DIR_LEN 1024
@@ -191,7 +191,7 @@ static void test_lines_skipped(void **state)
 static void test_bad_lines(void **state)
 {
     (void)state;
-    /* canlog's reasons (sim_host/canlog.h), the line's file and number cut */
+    /* canlog's reasons (sim_host/lib/log/log.h), the line's file and number cut */
     parse_bad("(1700000000.000000) vcan0", "truncated line: no frame after the interface");
     parse_bad("(1700000000.000000)", "truncated line: no interface and frame after the timestamp");
     parse_bad("(1700000000.00000", "truncated line: line ends in the timestamp");

@@ -30,7 +30,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "dbc.h"
+#include "lib/dbc.h"
 #include "pfe_can.h"
 #include "pfe_codec.h"
 

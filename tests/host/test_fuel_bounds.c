@@ -1,6 +1,6 @@
 /*
- * Host tests of the fuel bounds (sim_host/fuel_bounds.h), the route ranking
- * and the route generator (sim_host/route_gen.h), and the property of
+ * Host tests of the fuel bounds (sim_host/ref/fuel_bounds.h), the route ranking
+ * and the route generator (sim_host/lib/route_gen.h), and the property of
  * thesis 5.1: over seeded random hilly routes that meet the thesis's
  * assumptions, the node model's fuel lies between the bounds.
  *
@@ -34,9 +34,9 @@
 
 #include "../test_assert.h"
 
-#include "../../sim_host/fuel_bounds.h"
-#include "../../sim_host/node_model.h"
-#include "../../sim_host/route_gen.h"
+#include "ref/fuel_bounds.h"
+#include "ref/node_model.h"
+#include "lib/route_gen.h"
 
 /* At least 200 routes (the property's brief); seeds 1 .. PROPERTY_ROUTES. */
 #define PROPERTY_ROUTES 250U

@@ -1,7 +1,7 @@
 /* Host test: the firmware's identification (pfe_identify) against its
- * double-precision reference (sim_host/identify_ref) on the same samples,
+ * double-precision reference (sim_host/ref/identify_ref) on the same samples,
  * and both against the truth of the double-precision chapter 3 model
- * (sim_host/ref_model) driven by id_drive: trucks of 12, 40 and 60 t, the
+ * (sim_host/ref/ref_model) driven by id_drive: trucks of 12, 40 and 60 t, the
  * calibration's 40 t as the seed, speed noise 0.05 km/h at 1/256 km/h,
  * pitch noise 0.02 deg at 0.002 deg, fuel noise 2 % at LFE1's 0.05 L/h. */
 #include <setjmp.h>
@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "identify_ref.h"
+#include "ref/identify_ref.h"
 #include "pfe_calib.h"
 #include "pfe_fixed.h"
 #include "pfe_identify.h"

@@ -1,6 +1,6 @@
 /*
  * Host tests of the node model and the time-stepped object model
- * (sim_host/node_model.h).
+ * (sim_host/ref/node_model.h).
  *
  *     test_node_model ROADS_DIR      (or PFE_ROADS_DIR in the environment)
  *
@@ -34,8 +34,8 @@
 
 #include "../test_assert.h"
 
-#include "../../sim_host/node_model.h"
-#include "../../sim_host/ref_model.h"
+#include "ref/node_model.h"
+#include "ref/ref_model.h"
 
 static const char *g_roads_dir;
 

@@ -1,7 +1,7 @@
 /*
  * The module's prediction over a grade preview (firmware/pfe_predict.h)
- * against the double-precision object model (sim_host/ref_model.h) on the
- * same preview, as it arrives on CAN: each road of sim_host/roads encoded as
+ * against the double-precision object model (sim_host/ref/ref_model.h) on the
+ * same preview, as it arrives on CAN: each road of sim_host/data/roads encoded as
  * PFE_GradePreview frames, reassembled by pfe_preview_push(), then predicted
  * in slices of work as the ECU does. Fuel and time within 1 % of the
  * reference; the bounds around the prediction; hand-computed literals on the
@@ -26,8 +26,8 @@
 #include "firmware/pfe_ecu.h"
 #include "firmware/pfe_platoon.h"
 #include "firmware/pfe_predict.h"
-#include "sim_host/ref_model.h"
-#include "sim_host/road_csv.h"
+#include "ref/ref_model.h"
+#include "lib/road_csv.h"
 
 #define BUDGET PFE_ECU_PREDICT_UNITS /* work units per tick, as the ECU gives */
 
@@ -118,7 +118,7 @@ static ref_result_t reference(const pfe_platoon_config_t *cfg, uint32_t first, d
     return out;
 }
 
-/* A road of sim_host/roads as a preview: samples quantised to the message's
+/* A road of sim_host/data/roads as a preview: samples quantised to the message's
  * 20 ppm on the way. */
 static void load_road(const char *name, road_ppm_t *road)
 {

@@ -1,6 +1,6 @@
 /*
- * Tests of the road profile loader (sim_host/road_csv.c) and of the three
- * committed roads (sim_host/roads/).
+ * Tests of the road profile loader (sim_host/lib/road_csv.c) and of the three
+ * committed roads (sim_host/data/roads/).
  *
  *     test_road_csv [ROADS_DIR ROADGEN]
  *
@@ -34,7 +34,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "road_csv.h"
+#include "lib/road_csv.h"
 
 extern char **environ;
 

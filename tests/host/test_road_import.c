@@ -1,5 +1,5 @@
 /*
- * Host tests of the road import (sim_host/road_import.h) on made-up tracks
+ * Host tests of the road import (sim_host/lib/road_import.h) on made-up tracks
  * with known answers, and on bad input.
  *
  *     test_road_import TMP_DIR
@@ -25,7 +25,7 @@
 
 #include <cmocka.h>
 
-#include "../../sim_host/road_import.h"
+#include "lib/road_import.h"
 
 static const char *g_dir;
 

@@ -1,11 +1,11 @@
 /*
- * Host tests of the sensitivity analysis (sim_host/sensitivity_run.h): what
+ * Host tests of the sensitivity analysis (sim_host/ref/sensitivity_run.h): what
  * the physics says must happen when one parameter changes, checked on the
  * thesis's roads with the platoon of the thesis (N = 5, 90 km/h, 0.4 s),
  * the default calibration of firmware/pfe_calib.c.
  *
  * The flat and uphill roads are built here (1000 samples, 12 m apart, 0 %
- * and 2 %, as sim_host/roads/ holds them); the hilly road is read from
+ * and 2 %, as sim_host/data/roads/ holds them); the hilly road is read from
  * ROADS_DIR/hilly.csv.
  *
  * Hand figures used below, for the nominal platoon:
@@ -30,8 +30,8 @@
 
 #include "../test_assert.h"
 
-#include "../../sim_host/road_csv.h"
-#include "../../sim_host/sensitivity_run.h"
+#include "lib/road_csv.h"
+#include "ref/sensitivity_run.h"
 
 static const char *g_roads_dir;
 

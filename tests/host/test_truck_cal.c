@@ -1,9 +1,9 @@
 /*
- * test_truck_cal - the truck calibration file (sim_host/truck_cal.h): every
+ * test_truck_cal - the truck calibration file (sim_host/lib/truck_cal.h): every
  * field with its units, the module options, the per-position sections, and
  * every error named with its line and range.
  *
- *   test_truck_cal DIR   (DIR: sim_host/trucks, the bundled calibrations)
+ *   test_truck_cal DIR   (DIR: sim_host/data/trucks, the bundled calibrations)
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -14,9 +14,9 @@
 
 #include <cmocka.h>
 
-#include "sim_host/truck_cal.h"
+#include "lib/truck_cal.h"
 
-static const char *g_dir = "sim_host/trucks";
+static const char *g_dir = "sim_host/data/trucks";
 
 static void assert_error(const char *text, const char *expect)
 {

@@ -1,6 +1,6 @@
 /*
  * Trucks of length in the node model against the object model
- * (sim_host/node_model.h, spacing policies).
+ * (sim_host/ref/node_model.h, spacing policies).
  *
  *     test_truck_length ROADS_DIR      (or PFE_ROADS_DIR in the environment)
  *
@@ -28,9 +28,9 @@
 
 #include <cmocka.h>
 
-#include "../../sim_host/node_model.h"
-#include "../../sim_host/ref_model.h"
-#include "../../sim_host/route_gen.h"
+#include "ref/node_model.h"
+#include "ref/ref_model.h"
+#include "lib/route_gen.h"
 
 static const char *g_roads_dir;
 

@@ -8,7 +8,7 @@
 #
 #   tests/host/truck_cal_tools.sh HOST_TOOLS_DIR TRUCKS_DIR OUTDIR [ROAD.csv]
 set -u
-tools=$1 trucks=$2 out=$3 road=${4:-sim_host/roads/uphill.csv}
+tools=$1 trucks=$2 out=$3 road=${4:-sim_host/data/roads/uphill.csv}
 mkdir -p "$out"
 fail=0
 printf 'mass 12 t\nmasss 3 t\n' > "$out/unknown.cal"

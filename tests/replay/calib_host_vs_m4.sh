@@ -1,6 +1,6 @@
 #!/bin/sh
 # A truck's calibration on the host (pfe_ecu_replay --calib CAL) and
-# compiled into the Cortex-M4 image (make firmware CALIB=CAL, sim_host/cal2c.c):
+# compiled into the Cortex-M4 image (make firmware CALIB=CAL, sim_host/tools/cal2c.c):
 # the same log gives the same record byte for byte and the same summary;
 # and the calibration changes what the module sends (the record differs
 # from the default calibration's, on the host and in the default image).

@@ -1,6 +1,6 @@
 /*
  * log_vectors.h - log lines both log readers must read alike: the host's
- * (sim_host/canlog.h, every host tool) and the heap-free one of the replay
+ * (sim_host/lib/log/log.h, every host tool) and the heap-free one of the replay
  * bus (hal/replay/hal_replay.h, the Cortex-M4 image). Included by
  * tests/host/test_canlog.c and tests/hal/test_hal_replay.c, each of which
  * reads every line on its own, as a one-line log, and checks:
