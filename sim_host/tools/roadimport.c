@@ -89,43 +89,21 @@ int main(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *elev_out = NULL;
     double spacing = 10.0, smooth = ROAD_IMPORT_DEFAULT_SMOOTH_M;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        if ((strcmp(a, "--help") == 0) || (strcmp(a, "-h") == 0)) {
-            usage(stdout);
-            return 0;
-        }
-        if (a[0] != '-') {
-            if (in != NULL) {
-                fprintf(stderr, "roadimport: one input only ('%s' and '%s')\n", in, a);
-                return 2;
-            }
-            in = a;
-            continue;
-        }
-        int bad = (v == NULL);
-        if (bad) {
-            /* reported below */
-        } else if (strcmp(a, "--out") == 0) {
-            out = v;
-        } else if (strcmp(a, "--elevation-out") == 0) {
-            elev_out = v;
-        } else if (strcmp(a, "--spacing-m") == 0) {
-            bad = cli_parse_double(v, 1.0, 250.0, &spacing);
-        } else if (strcmp(a, "--smooth-m") == 0) {
-            bad = cli_parse_double(v, 1.0, 20000.0, &smooth);
-        } else {
-            fprintf(stderr, "roadimport: unknown option '%s'\n", a);
-            usage(stderr);
-            return 2;
-        }
-        if (bad) {
-            fprintf(stderr, "roadimport: option %s needs a valid value (got '%s')\n", a,
-                    (v != NULL) ? v : "nothing");
-            return 2;
-        }
-        i++;
+    if (cli_help_asked(argc, argv)) {
+        usage(stdout);
+        return 0;
+    }
+    const cli_option_t opts[] = {
+        {"--out", CLI_TEXT, 0.0, 0.0, &out, NULL},
+        {"--elevation-out", CLI_TEXT, 0.0, 0.0, &elev_out, NULL},
+        {"--spacing-m", CLI_DOUBLE, 1.0, 250.0, &spacing, NULL},
+        {"--smooth-m", CLI_DOUBLE, 1.0, 20000.0, &smooth, NULL},
+    };
+    int n_in = 0;
+    if (cli_parse_options("roadimport", argc, argv, 1, opts, sizeof opts / sizeof opts[0], &in, 1,
+                          &n_in) != 0) {
+        usage(stderr);
+        return 2;
     }
     if ((in == NULL) || (out == NULL)) {
         fprintf(stderr, "roadimport: give an INPUT and --out ROAD.csv\n");

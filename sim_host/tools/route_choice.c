@@ -126,55 +126,33 @@ int main(int argc, char **argv)
     unsigned n_trucks = 0U;
     const char *routes[MAX_ROUTES];
     int n_routes = 0;
-    double n = 5.0, set_kmh = 90.0, time_gap = 0.4;
-    int vehicles_given = 0;
+    unsigned long n = 5U;
+    double set_kmh = 90.0, time_gap = 0.4;
     char err[512];
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        if ((strcmp(a, "--help") == 0) || (strcmp(a, "-h") == 0)) {
-            usage(stdout);
-            return 0;
-        }
-        if (a[0] != '-') {
-            if (n_routes == MAX_ROUTES) {
-                fprintf(stderr, "route_choice: at most %d routes\n", MAX_ROUTES);
-                return 2;
-            }
-            routes[n_routes++] = a;
-            continue;
-        }
-        int bad = (v == NULL);
-        if (bad) {
-            /* reported below */
-        } else if (strcmp(a, "--vehicles") == 0) {
-            bad = cli_parse_double(v, 1.0, NODE_MAX_VEHICLES, &n) || (n != floor(n));
-            vehicles_given = 1;
-        } else if (strcmp(a, "--set-speed-kmh") == 0) {
-            bad = cli_parse_double(v, 5.0, 250.0, &set_kmh);
-        } else if (strcmp(a, "--time-gap-s") == 0) {
-            bad = cli_parse_double(v, 0.0, 10.0, &time_gap);
-        } else if (strcmp(a, "--truck") == 0) {
-            if (n_trucks == NODE_MAX_VEHICLES) {
-                fprintf(stderr, "route_choice: at most %u trucks\n", NODE_MAX_VEHICLES);
-                return 2;
-            }
-            if (parse_truck(v, &trucks[n_trucks], err, sizeof err) != 0) {
-                fprintf(stderr, "route_choice: --truck %s: %s\n", v, err);
-                return 2;
-            }
-            n_trucks++;
-        } else {
-            fprintf(stderr, "route_choice: unknown option '%s'\n", a);
-            usage(stderr);
+    if (cli_help_asked(argc, argv)) {
+        usage(stdout);
+        return 0;
+    }
+    const char *truck_args[NODE_MAX_VEHICLES];
+    cli_list_t truck_list = {truck_args, NODE_MAX_VEHICLES, 0U};
+    bool vehicles_given = false;
+    const cli_option_t opts[] = {
+        {"--vehicles", CLI_UL, 1.0, NODE_MAX_VEHICLES, &n, &vehicles_given},
+        {"--set-speed-kmh", CLI_DOUBLE, 5.0, 250.0, &set_kmh, NULL},
+        {"--time-gap-s", CLI_DOUBLE, 0.0, 10.0, &time_gap, NULL},
+        {"--truck", CLI_LIST, 0.0, 0.0, &truck_list, NULL},
+    };
+    if (cli_parse_options("route_choice", argc, argv, 1, opts, sizeof opts / sizeof opts[0], routes,
+                          MAX_ROUTES, &n_routes) != 0) {
+        usage(stderr);
+        return 2;
+    }
+    for (unsigned k = 0U; k < truck_list.n; k++) {
+        if (parse_truck(truck_args[k], &trucks[n_trucks], err, sizeof err) != 0) {
+            fprintf(stderr, "route_choice: --truck %s: %s\n", truck_args[k], err);
             return 2;
         }
-        if (bad) {
-            fprintf(stderr, "route_choice: option %s needs a valid value (got '%s')\n", a,
-                    (v != NULL) ? v : "nothing");
-            return 2;
-        }
-        i++;
+        n_trucks++;
     }
     if (n_routes < 2) {
         fprintf(stderr, "route_choice: give at least two routes to choose from\n");

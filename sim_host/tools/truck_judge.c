@@ -355,37 +355,20 @@ static int avail(int argc, char **argv)
     unsigned long module_sa = 0x8CU, grade_source = 99U, min_lfe1 = 0U;
     double warmup_s = 10.0, min_pct = 95.0, max_err_pct = -1.0;
     const char *truth_path = NULL;
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        if (a[0] != '-') {
-            path = a;
-            continue;
-        }
-        const char *v = (i + 1 < argc) ? argv[++i] : "";
-        int bad = 0;
-        if (strcmp(a, "--name") == 0) {
-            name = v;
-        } else if (strcmp(a, "--module-sa") == 0) {
-            bad = cli_parse_ul(v, 0U, 253U, &module_sa);
-        } else if (strcmp(a, "--warmup-s") == 0) {
-            bad = cli_parse_double(v, 0.0, 3600.0, &warmup_s);
-        } else if (strcmp(a, "--min-pct") == 0) {
-            bad = cli_parse_double(v, 0.0, 100.0, &min_pct);
-        } else if (strcmp(a, "--grade-source") == 0) {
-            bad = cli_parse_ul(v, 0U, 3U, &grade_source);
-        } else if (strcmp(a, "--truth") == 0) {
-            truth_path = v;
-        } else if (strcmp(a, "--max-fuel-err-pct") == 0) {
-            bad = cli_parse_double(v, 0.0, 1000.0, &max_err_pct);
-        } else if (strcmp(a, "--min-module-lfe1") == 0) {
-            bad = cli_parse_ul(v, 0U, 10000000U, &min_lfe1);
-        } else {
-            bad = 1;
-        }
-        if (bad) {
-            fprintf(stderr, "truck_judge: bad option %s '%s'\n", a, v);
-            return 2;
-        }
+    const cli_option_t opts[] = {
+        {"--name", CLI_TEXT, 0.0, 0.0, &name, NULL},
+        {"--module-sa", CLI_UL, 0.0, 253.0, &module_sa, NULL},
+        {"--warmup-s", CLI_DOUBLE, 0.0, 3600.0, &warmup_s, NULL},
+        {"--min-pct", CLI_DOUBLE, 0.0, 100.0, &min_pct, NULL},
+        {"--grade-source", CLI_UL, 0.0, 3.0, &grade_source, NULL},
+        {"--truth", CLI_TEXT, 0.0, 0.0, &truth_path, NULL},
+        {"--max-fuel-err-pct", CLI_DOUBLE, 0.0, 1000.0, &max_err_pct, NULL},
+        {"--min-module-lfe1", CLI_UL, 0.0, 10000000.0, &min_lfe1, NULL},
+    };
+    int np = 0;
+    if (cli_parse_options("truck_judge avail", argc, argv, 2, opts, sizeof opts / sizeof opts[0],
+                          &path, 1, &np) != 0) {
+        return 2;
     }
     if (path == NULL) {
         fprintf(stderr, "truck_judge: avail needs a RECORD\n");
@@ -503,42 +486,22 @@ static int hostile(int argc, char **argv)
     unsigned long module_sa = 0x8CU, bursts = 0U, frames = 0U;
     int np = 0;
     bool have_bursts = false, have_frames = false, exact = false;
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        if (a[0] != '-') {
-            if (np == 2) {
-                fprintf(stderr, "truck_judge: hostile takes two records\n");
-                return 2;
-            }
-            paths[np++] = a;
-            continue;
-        }
-        if (strcmp(a, "--exact") == 0) {
-            exact = true;
-            continue;
-        }
-        const char *v = (i + 1 < argc) ? argv[++i] : "";
-        int bad = 0;
-        if (strcmp(a, "--name") == 0) {
-            name = v;
-        } else if (strcmp(a, "--module-sa") == 0) {
-            bad = cli_parse_ul(v, 0U, 253U, &module_sa);
-        } else if (strcmp(a, "--frames") == 0) {
-            bad = cli_parse_ul(v, 1U, 10000000U, &frames);
-            have_frames = true;
-        } else if (strcmp(a, "--bursts") == 0) {
-            bad = cli_parse_ul(v, 1U, 100000U, &bursts);
-            have_bursts = true;
-        } else if (strcmp(a, "--expect") == 0) {
-            expect = v;
-            bad = (strcmp(v, "conflicts") != 0) && (strcmp(v, "rejected") != 0);
-        } else {
-            bad = 1;
-        }
-        if (bad) {
-            fprintf(stderr, "truck_judge: bad option %s '%s'\n", a, v);
-            return 2;
-        }
+    const cli_option_t opts[] = {
+        {"--exact", CLI_FLAG, 0.0, 0.0, &exact, NULL},
+        {"--name", CLI_TEXT, 0.0, 0.0, &name, NULL},
+        {"--module-sa", CLI_UL, 0.0, 253.0, &module_sa, NULL},
+        {"--frames", CLI_UL, 1.0, 10000000.0, &frames, &have_frames},
+        {"--bursts", CLI_UL, 1.0, 100000.0, &bursts, &have_bursts},
+        {"--expect", CLI_TEXT, 0.0, 0.0, &expect, NULL},
+    };
+    if (cli_parse_options("truck_judge hostile", argc, argv, 2, opts, sizeof opts / sizeof opts[0],
+                          paths, 2, &np) != 0) {
+        return 2;
+    }
+    if ((expect != NULL) && (strcmp(expect, "conflicts") != 0) && (strcmp(expect, "rejected") != 0)) {
+        fprintf(stderr, "truck_judge hostile: --expect takes conflicts or rejected (got '%s')\n",
+                expect);
+        return 2;
     }
     if ((np != 2) || !have_bursts || ((have_frames || exact) && (expect == NULL)) ||
         (exact && !have_frames)) {
@@ -630,41 +593,21 @@ static int identify(int argc, char **argv)
     unsigned long module_sa = 0x8CU;
     double from_s = -1.0, for_s = 300.0, mass_kg = 0.0, max_mass_pct = 15.0, max_fuel_pct = 10.0;
     bool off = false;
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        if (a[0] != '-') {
-            path = a;
-            continue;
-        }
-        if (strcmp(a, "--off") == 0) {
-            off = true;
-            continue;
-        }
-        const char *v = (i + 1 < argc) ? argv[++i] : "";
-        int bad = 0;
-        if (strcmp(a, "--name") == 0) {
-            name = v;
-        } else if (strcmp(a, "--module-sa") == 0) {
-            bad = cli_parse_ul(v, 0U, 253U, &module_sa);
-        } else if (strcmp(a, "--truth") == 0) {
-            truth_path = v;
-        } else if (strcmp(a, "--from") == 0) {
-            bad = cli_parse_double(v, 0.0, 36000.0, &from_s);
-        } else if (strcmp(a, "--for") == 0) {
-            bad = cli_parse_double(v, 1.0, 36000.0, &for_s);
-        } else if (strcmp(a, "--mass") == 0) {
-            bad = cli_parse_double(v, 1000.0, 100000.0, &mass_kg);
-        } else if (strcmp(a, "--max-mass-err-pct") == 0) {
-            bad = cli_parse_double(v, 0.0, 1000.0, &max_mass_pct);
-        } else if (strcmp(a, "--max-fuel-err-pct") == 0) {
-            bad = cli_parse_double(v, 0.0, 1000.0, &max_fuel_pct);
-        } else {
-            bad = 1;
-        }
-        if (bad) {
-            fprintf(stderr, "truck_judge: bad option %s '%s'\n", a, v);
-            return 2;
-        }
+    const cli_option_t opts[] = {
+        {"--off", CLI_FLAG, 0.0, 0.0, &off, NULL},
+        {"--name", CLI_TEXT, 0.0, 0.0, &name, NULL},
+        {"--module-sa", CLI_UL, 0.0, 253.0, &module_sa, NULL},
+        {"--truth", CLI_TEXT, 0.0, 0.0, &truth_path, NULL},
+        {"--from", CLI_DOUBLE, 0.0, 36000.0, &from_s, NULL},
+        {"--for", CLI_DOUBLE, 1.0, 36000.0, &for_s, NULL},
+        {"--mass", CLI_DOUBLE, 1000.0, 100000.0, &mass_kg, NULL},
+        {"--max-mass-err-pct", CLI_DOUBLE, 0.0, 1000.0, &max_mass_pct, NULL},
+        {"--max-fuel-err-pct", CLI_DOUBLE, 0.0, 1000.0, &max_fuel_pct, NULL},
+    };
+    int np = 0;
+    if (cli_parse_options("truck_judge identify", argc, argv, 2, opts, sizeof opts / sizeof opts[0],
+                          &path, 1, &np) != 0) {
+        return 2;
     }
     if ((path == NULL) || (truth_path == NULL) || (from_s < 0.0) || (mass_kg <= 0.0)) {
         fprintf(stderr, "truck_judge: identify needs RECORD --truth CSV --from S --mass KG\n");
