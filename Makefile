@@ -105,7 +105,8 @@ UNIT_SRC := $(FW_SRC) $(HAL_FAKE_SRC)
 $(foreach t,$(UNIT_TESTS),$(call host_test,unit_$(t),tests/unit/$(t).c $(HAL_FAKE_SRC)))
 # tests/host/NAME.c alone over the archives.
 HOST_TESTS := test_accuracy test_road_csv test_predict test_identify_ref test_dbc_codec test_canlog \
-    test_capture test_truck_cal test_sensitivity test_node_model test_fuel_bounds test_road_import
+    test_capture test_truck_cal test_sensitivity test_node_model test_fuel_bounds test_road_import \
+    test_cli_args
 $(foreach t,$(HOST_TESTS),$(call host_test,$(t),tests/host/$(t).c))
 $(call host_test,ecu_offline,tests/host/ecu_offline.c)
 $(call host_test,test_nvm_faults,tests/host/test_nvm_faults.c $(ECU_LOOP_SRC) $(HAL_FAKE_SRC))
@@ -118,7 +119,7 @@ $(call host_test,test_hal_replay,tests/hal/test_hal_replay.c tests/hal/hal_confo
 HOST_TEST_BINS := $(addprefix $(HOSTSAN)/unit_,$(UNIT_TESTS)) $(HOSTSAN)/test_accuracy \
                   $(HOSTSAN)/test_road_csv $(HOSTSAN)/roadgen $(HOSTSAN)/test_dbc_codec \
                   $(HOSTSAN)/test_hal_fake $(HOSTSAN)/test_hal_replay $(HOSTSAN)/test_ecu_loop $(HOSTSAN)/test_predict \
-                  $(HOSTSAN)/test_identify_ref
+                  $(HOSTSAN)/test_identify_ref $(HOSTSAN)/test_cli_args
 
 # No assert compares without printing the values (scripts/check_asserts.py
 # over tests/); the check shown to fail on planted comparisons and the
@@ -130,7 +131,7 @@ test-asserts: $(HOSTSAN)/test_assert_demo
 	@echo "== host: no bare comparison in an assert"; python3 scripts/check_asserts.py tests
 	@sh tests/asserts/check_asserts_test.sh $(HOSTSAN)/test_assert_demo
 
-## host tests under ASan and UBSan: firmware units, accuracy, prediction, road loader, codec against the DBC, HAL conformance, the ECU loop, the asserts check
+## host tests under ASan and UBSan: firmware units, accuracy, prediction, road loader, codec against the DBC, HAL conformance, the ECU loop, the tools' option tables, the asserts check
 test-host: $(HOST_TEST_BINS) test-asserts
 	@set -e; for t in $(UNIT_TESTS); do echo "== host unit: $$t"; $(HOSTSAN)/unit_$$t; done
 	@echo "== host: test_accuracy"; $(HOSTSAN)/test_accuracy $(ROADS)
@@ -141,6 +142,7 @@ test-host: $(HOST_TEST_BINS) test-asserts
 	@echo "== host: HAL conformance on hal/fake"; $(HOSTSAN)/test_hal_fake
 	@echo "== host: HAL conformance on hal/replay"; $(HOSTSAN)/test_hal_replay
 	@echo "== host: the ECU loop on hal/fake"; $(HOSTSAN)/test_ecu_loop
+	@echo "== host: the tools' option tables"; $(HOSTSAN)/test_cli_args
 
 # ---------------------------------------------------------------- Cortex-M4 (QEMU mps2-an386)
 
