@@ -91,6 +91,30 @@ uint32_t hal_ecu_loop_step(hal_ecu_loop_t *loop, uint64_t now_us)
     return sent;
 }
 
+hal_ecu_pace_t hal_ecu_loop_pace(hal_ecu_loop_t *loop, uint64_t *deadline_us, uint64_t now_us)
+{
+    const uint64_t next = *deadline_us + PFE_ECU_TICK_US;
+    *deadline_us = next;
+    hal_ecu_pace_t pace = HAL_ECU_PACE_ON_TIME;
+    if (now_us > next) {
+        pace = HAL_ECU_PACE_CATCH_UP;
+        const uint64_t behind = (now_us - next) / PFE_ECU_TICK_US; /* whole ticks missed */
+        if (behind > HAL_ECU_LOOP_CATCH_UP_TICKS) {
+            const uint32_t lost = (behind > UINT32_MAX) ? UINT32_MAX : (uint32_t)behind;
+            pfe_ecu_note_overrun(loop->ecu, lost);
+            loop->skipped_ticks = ((UINT32_MAX - loop->skipped_ticks) < lost) ? UINT32_MAX
+                                                                               : (loop->skipped_ticks + lost);
+            *deadline_us = next + (behind * PFE_ECU_TICK_US);
+            pace = HAL_ECU_PACE_SKIPPED;
+        } else if (behind > 0U) {
+            pfe_ecu_note_overrun(loop->ecu, 1U);
+        } else {
+            /* less than a tick late: run the next pass now, nothing counted */
+        }
+    }
+    return pace;
+}
+
 int hal_ecu_loop_save(hal_ecu_loop_t *loop)
 {
     pfe_nvm_state_t rec;

@@ -24,7 +24,20 @@
  *   4. fuel totals are saved to NVM when due, the result reported to the
  *      ECU (pfe_ecu_nvm_written()): a failed write is retried on the next
  *      pass, to the same slot.
- * The caller owns the timing: what counts as late, and waiting.
+ * The caller owns the waiting; hal_ecu_loop_pace() says when the next pass
+ * is due.
+ *
+ * Pacing, hal_ecu_loop_pace(), after each pass: the model is fixed-step
+ * (each tick is PFE_ECU_TICK_US of fuel and distance), so a tick that is
+ * skipped is fuel never counted. A pass that ends after the next deadline
+ * (a stalled host process, a long flash erase) therefore does not skip
+ * ticks: the missed ticks run back to back, each with the frames received
+ * by its own deadline (step 1 above), until the loop is on time again. Only
+ * a stall longer than HAL_ECU_LOOP_CATCH_UP_TICKS ticks is given up on: the
+ * ticks beyond it are skipped, counted (pfe_ecu_note_overrun() and
+ * hal_ecu_loop_t.skipped_ticks), and the deadlines restart from now. Every
+ * tick run after its next deadline is counted as an overrun too, so the bus
+ * sees (PFE_Status) that outputs came late.
  */
 #ifndef HAL_ECU_LOOP_H
 #define HAL_ECU_LOOP_H
@@ -37,6 +50,16 @@
 #include "hal/hal_nvm.h"
 
 #define HAL_ECU_LOOP_RX_MAX (2U * PFE_ECU_RX_QUEUE_LEN)
+/* Ticks a late loop runs back to back to catch up: 1 s. A longer stall is
+ * a fault (the STM32's watchdog fires from 1.6 s without an on-time pass),
+ * not a load to ride out. */
+#define HAL_ECU_LOOP_CATCH_UP_TICKS 100U
+
+typedef enum {
+    HAL_ECU_PACE_ON_TIME,    /* wait for the next deadline */
+    HAL_ECU_PACE_CATCH_UP,   /* the next deadline is past: run its pass now */
+    HAL_ECU_PACE_SKIPPED     /* too far behind: ticks skipped, deadlines from now */
+} hal_ecu_pace_t;
 
 typedef struct {
     pfe_ecu_t *ecu;
@@ -46,6 +69,7 @@ typedef struct {
     hal_can_rx_t held;                 /* received after the last pass's deadline */
     bool have_held;
     uint32_t nvm_failures;             /* saves the backend refused */
+    uint32_t skipped_ticks;            /* ticks given up on by hal_ecu_loop_pace(), saturating */
     int restored_slot;                 /* NVM slot restored from, -1 for none */
     uint32_t filters;                  /* receive filters the backend took */
     pfe_nvm_state_t restored;          /* totals restored at start-up */
@@ -70,6 +94,20 @@ int hal_ecu_loop_init(hal_ecu_loop_t *loop, pfe_ecu_t *ecu, const pfe_ecu_config
 
 /* One pass at deadline now_us (see above). Returns how many frames it sent. */
 uint32_t hal_ecu_loop_step(hal_ecu_loop_t *loop, uint64_t now_us);
+
+/*
+ * After the pass for *deadline_us, at now_us (the same clock): advances
+ * *deadline_us to the next pass's deadline and says whether to wait for it
+ * (see Pacing above). now_us no later than the next deadline is on time
+ * (the STM32 feeds its watchdog only then). Late by more than a tick, the
+ * next deadline stays the next tick's (CATCH_UP, one overrun counted),
+ * unless more than HAL_ECU_LOOP_CATCH_UP_TICKS ticks are missed: then the
+ * ticks up to now are skipped and counted, and the next deadline is the
+ * last tick boundary before now (SKIPPED). Late by less than a tick is
+ * on time's neighbour: the next pass runs at once with no count (CATCH_UP
+ * with nothing counted). O(1); the skip count saturates at UINT32_MAX.
+ */
+hal_ecu_pace_t hal_ecu_loop_pace(hal_ecu_loop_t *loop, uint64_t *deadline_us, uint64_t now_us);
 
 /* Writes the fuel totals now (when due, and at the end of a run) and
  * reports the result to the ECU: 0 or the backend's HAL_E* code. */

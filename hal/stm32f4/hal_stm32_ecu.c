@@ -27,18 +27,3 @@ void hal_stm32_ecu_report(pfe_ecu_t *ecu, hal_can_t *can, const hal_nvm_t *nvm,
     marks->failures = nvm->failures;
     ecu->count.nvm_write_failures = nvm->failures;
 }
-
-bool hal_stm32_ecu_pace(pfe_ecu_t *ecu, uint64_t *deadline_us, uint64_t now_us)
-{
-    const uint64_t next = *deadline_us + PFE_ECU_TICK_US;
-    *deadline_us = next;
-    if (now_us <= next) {
-        return true;
-    }
-    if (now_us > (next + PFE_ECU_TICK_US)) {
-        const uint64_t lost = (now_us - next) / PFE_ECU_TICK_US;
-        pfe_ecu_note_overrun(ecu, (lost > UINT32_MAX) ? UINT32_MAX : (uint32_t)lost);
-        *deadline_us = next + (lost * PFE_ECU_TICK_US);
-    }
-    return false;
-}

@@ -5,9 +5,9 @@
  *   - hands the ECU the CAN controller's error state
  *     (pfe_ecu_note_bus_state()) and the NVM's health (nvm_failing: the
  *     last save failed; count.nvm_write_failures), sent in PFE_DeviceStatus;
- *   - paces the deadlines: a pass that ended by its next deadline feeds the
- *     watchdog; one later than a whole tick counts the ticks lost
- *     (pfe_ecu_note_overrun()) and restarts the deadlines from now.
+ * The deadlines themselves are paced by hal_ecu_loop_pace() (a late loop
+ * catches up tick by tick); main_ecu.c feeds the watchdog only after an
+ * on-time pass.
  */
 #ifndef HAL_STM32_ECU_H
 #define HAL_STM32_ECU_H
@@ -28,10 +28,5 @@ void hal_stm32_ecu_marks_init(hal_stm32_ecu_marks_t *marks, const hal_nvm_t *nvm
 
 void hal_stm32_ecu_report(pfe_ecu_t *ecu, hal_can_t *can, const hal_nvm_t *nvm,
                           hal_stm32_ecu_marks_t *marks);
-
-/* *deadline_us is the deadline the pass just ran for; advances it to the
- * next one (and past lost ticks). Returns true when the watchdog may be
- * fed: now_us no later than the next deadline. */
-bool hal_stm32_ecu_pace(pfe_ecu_t *ecu, uint64_t *deadline_us, uint64_t now_us);
 
 #endif /* HAL_STM32_ECU_H */

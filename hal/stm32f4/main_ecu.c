@@ -7,11 +7,10 @@
  * Each pass: wait for the tick's deadline (TIM2 compare, WFI), run
  * hal_ecu_loop_step(), hand the controller's error state and the NVM's
  * health to the ECU (PFE_DeviceStatus), then feed the watchdog only if the
- * pass finished before the next deadline (hal_stm32_ecu.h, tested on the
- * host with the drivers on the register models). A pass later than a whole tick
- * counts the ticks lost (pfe_ecu_note_overrun()) and restarts the
- * deadlines from now, as sim_host/tools/pfe_ecu.c does; ticks that stay late
- * stop feeding the watchdog, which then resets the module
+ * pass finished before the next deadline (hal_ecu_loop_pace(), as
+ * sim_host/tools/pfe_ecu.c paces): a late pass (a flash erase, say) is
+ * followed by the missed ticks back to back, at most 1 s of them; ticks
+ * that stay late stop feeding the watchdog, which then resets the module
  * (hal_stm32_board.h: 1.6 to 4.5 s), and the next start reports it
  * (ResetCause 1).
  *
@@ -117,7 +116,7 @@ int main(void)
         (void)hal_time_wait_until_us(&s_time, deadline);
         (void)hal_ecu_loop_step(&s_loop, deadline);
         hal_stm32_ecu_report(&s_ecu, &s_can, &s_nvm, &marks);
-        if (hal_stm32_ecu_pace(&s_ecu, &deadline, hal_stm32_now_us())) {
+        if (hal_ecu_loop_pace(&s_loop, &deadline, hal_stm32_now_us()) == HAL_ECU_PACE_ON_TIME) {
             hal_stm32_watchdog_feed(IWDG);
         }
     }

@@ -52,9 +52,13 @@ static const char k_manual[] =
     "\n"
     "Every 10 ms, on CLOCK_MONOTONIC absolute deadlines, it receives every frame\n"
     "waiting on IF, ticks the ECU, sends what the tick produced and saves the fuel\n"
-    "totals to FILE when due. A late tick is counted as an overrun (and the\n"
-    "schedule resynchronised), a frame the kernel would not take as a transmit\n"
-    "drop. SIGINT or SIGTERM (Ctrl-C) stop it cleanly with a final save.\n"
+    "totals to FILE when due. After a stall (a busy machine) the missed ticks\n"
+    "run at once, each with the frames received by its own deadline, so no fuel\n"
+    "is lost; each tick run more than 10 ms late counts as an overrun. A stall of\n"
+    "more than 1 s is given up on: its ticks are skipped and counted (\"ticks\n"
+    "skipped\" at the end), and the schedule restarts from now. A frame the\n"
+    "kernel would not take counts as a transmit drop. SIGINT or SIGTERM (Ctrl-C)\n"
+    "stop it cleanly with a final save.\n"
     "\n"
     "It refuses an interface that is not virtual CAN unless given\n"
     "--allow-real-bus, and says which case it is: an empty name, no such\n"
@@ -241,14 +245,9 @@ int main(int argc, char **argv)
     int status = 0;
     while (!g_stop && (deadline < end)) {
         (void)hal_ecu_loop_step(&loop, deadline);
-        deadline += PFE_ECU_TICK_US;
-        t = hal_time_now_us(clock);
-        if (t > (deadline + PFE_ECU_TICK_US)) {
-            /* Late by more than a tick: count the ticks lost and start again from now. */
-            const uint64_t lost = (t - deadline) / PFE_ECU_TICK_US;
-            pfe_ecu_note_overrun(&ecu, (lost > UINT32_MAX) ? UINT32_MAX : (uint32_t)lost);
-            deadline += lost * PFE_ECU_TICK_US;
-        }
+        /* A late pass runs the missed ticks at once (hal_ecu_loop_pace()):
+         * the wait below returns at once for a deadline already past. */
+        (void)hal_ecu_loop_pace(&loop, &deadline, hal_time_now_us(clock));
         sleep_until_us(clock, deadline);
     }
     if (hal_ecu_loop_save(&loop) != 0) {
@@ -256,10 +255,11 @@ int main(int argc, char **argv)
         status = 1;
     }
     fprintf(stderr, "pfe_ecu: stopped; %llu uL own / %llu uL platoon saved; rx %lu, tx %lu, "
-                    "overruns %lu, rx dropped %lu, tx dropped %lu, NVM saves failed %lu\n",
+                    "overruns %lu (ticks skipped %lu), rx dropped %lu, tx dropped %lu, NVM saves failed %lu\n",
             (unsigned long long)pfe_ecu_own_fuel_ul(&ecu),
             (unsigned long long)pfe_ecu_platoon_fuel_ul(&ecu), (unsigned long)ecu.count.rx_frames,
             (unsigned long)ecu.count.tx_frames, (unsigned long)ecu.count.overruns,
+            (unsigned long)loop.skipped_ticks,
             (unsigned long)ecu.count.rx_dropped, (unsigned long)ecu.count.tx_dropped,
             (unsigned long)loop.nvm_failures);
     hal_nvm_file_close(nvm);

@@ -25,6 +25,7 @@
 #include "firmware/pfe_codec.h"
 #include "ref/bus_ref.h"
 #include "lib/capture.h"
+#include "lib/disturb.h"
 #include "hal/replay/hal_replay_ecu.h"
 #include "ref/prediction_judge.h"
 #include "lib/truck_cal.h"
@@ -78,8 +79,10 @@ static const char k_manual[] =
     "totals (PFE_OwnFuel or HRLFC, PFE_PlatoonFuel) against the reference's\n"
     "between the same instants. Rates within 2 s after the capture shows the\n"
     "replay stalling or bunching (SSI more than 30 ms apart, CCVS1 outside 50 to\n"
-    "150 ms) or after the module reports 5 or more lost ticks are left out and\n"
-    "counted (rate_frames_disturbed_pct). When another node sends LFE1 (the\n"
+    "150 ms) or after the module reports 5 or more lost ticks, and rates among\n"
+    "the module's own bunched frames (LFE1 or PFE_OwnFuel outside 50 to 150 ms:\n"
+    "a loop catching up after a stall) are left out and counted\n"
+    "(rate_frames_disturbed_pct). When another node sends LFE1 (the\n"
     "engine's measured fuel rate), the module's own-truck rate is judged against\n"
     "it too (engine_rate_r, engine_fuel_ratio, overall and split by PFE_OwnFuel's\n"
     "ModelIdentified). The predictions (PFE_FuelPrediction) are judged against\n"
@@ -964,112 +967,6 @@ static bool nearest_rate(const ref_run_t *run, size_t last, uint64_t t_us, bool 
 }
 
 /*
- * Spans in which the capture cannot say what the module saw or did, so that
- * its rates are not held against a reference ticking on ideal time:
- *   - input timing: SSI frames more than 30 ms apart, or CCVS1 frames less
- *     than 50 or more than 150 ms apart, each sender's apart from the
- *     others' (a stalled or bunched replay: a
- *     bunch reaches the module later than its timestamps say, and the speed
- *     filter counts the periods between samples);
- *   - the module lost ticks: PFE_Status TickOverruns went up by
- *     LOST_TICKS_MIN or more since the previous PFE_Status (its estimator
- *     skipped steps: with 5 of the 10 ticks between two CCVS1 samples lost
- *     it counts no period between them; fewer cannot change its count).
- * Each span runs from the last good frame to DISTURB_RECOVERY_US after the
- * event, the time the speed filter takes to forget it (its acceleration
- * gain is 0.05 per 100 ms sample).
- */
-#define DISTURB_RECOVERY_US 2000000U
-#define LOST_TICKS_MIN 5U
-#define SSI_GAP_MAX_US 30000U
-#define CCVS1_GAP_MIN_US 50000U
-#define CCVS1_GAP_MAX_US 150000U
-
-typedef struct {
-    uint64_t from_us, to_us;
-} span_t;
-
-typedef struct {
-    span_t *spans;          /* owned */
-    size_t n, room;
-    size_t input_events, overrun_events;
-} disturb_t;
-
-static void disturb_add(disturb_t *d, uint64_t from_us, uint64_t event_us)
-{
-    if (d->n == d->room) {
-        const size_t want = (d->room == 0U) ? 64U : (d->room * 2U);
-        span_t *grown = realloc(d->spans, want * sizeof *grown);
-        if (grown == NULL) {
-            return; /* out of memory: the span is judged like any other */
-        }
-        d->spans = grown;
-        d->room = want;
-    }
-    d->spans[d->n].from_us = from_us;
-    d->spans[d->n].to_us = event_us + DISTURB_RECOVERY_US;
-    d->n++;
-}
-
-static void disturb_find(const capture_t *cap, uint8_t module_sa, disturb_t *d)
-{
-    memset(d, 0, sizeof *d);
-    /* each sender's own timing: two senders of CCVS1 interleave */
-    static uint64_t last_ssi[256], last_ccvs1[256];
-    static bool have_ssi[256], have_ccvs1[256];
-    memset(have_ssi, 0, sizeof have_ssi);
-    memset(have_ccvs1, 0, sizeof have_ccvs1);
-    uint64_t last_status = 0U;
-    bool have_status = false;
-    uint32_t overruns = 0U;
-    for (size_t k = 0U; k < cap->n; k++) {
-        const capture_rec_t *r = &cap->recs[k];
-        const uint32_t pgn = pfe_j1939_pgn(r->f.id);
-        const uint8_t sa = pfe_j1939_source(r->f.id);
-        if (sa != module_sa) {
-            if (pgn == PFE_PGN_SSI) {
-                if (have_ssi[sa] && ((r->t_us - last_ssi[sa]) > SSI_GAP_MAX_US)) {
-                    disturb_add(d, last_ssi[sa], r->t_us);
-                    d->input_events++;
-                }
-                have_ssi[sa] = true;
-                last_ssi[sa] = r->t_us;
-            } else if (pgn == PFE_PGN_CCVS1) {
-                const uint64_t gap = r->t_us - last_ccvs1[sa];
-                if (have_ccvs1[sa] && ((gap < CCVS1_GAP_MIN_US) || (gap > CCVS1_GAP_MAX_US))) {
-                    disturb_add(d, last_ccvs1[sa], r->t_us);
-                    d->input_events++;
-                }
-                have_ccvs1[sa] = true;
-                last_ccvs1[sa] = r->t_us;
-            }
-            continue;
-        }
-        pfe_msg_status_t m;
-        if ((pgn == PFE_PGN_STATUS) && (pfe_codec_decode_status(&r->f, &m) >= 0) &&
-            (m.tick_overruns.state == PFE_SIG_VALID)) {
-            if (m.tick_overruns.value >= overruns + LOST_TICKS_MIN) {
-                disturb_add(d, have_status ? last_status : cap->recs[0].t_us, r->t_us);
-                d->overrun_events++;
-            }
-            overruns = m.tick_overruns.value;
-            have_status = true;
-            last_status = r->t_us;
-        }
-    }
-}
-
-static bool disturbed(const disturb_t *d, uint64_t t_us)
-{
-    for (size_t k = 0U; k < d->n; k++) {
-        if ((t_us >= d->spans[k].from_us) && (t_us <= d->spans[k].to_us)) {
-            return true;
-        }
-    }
-    return false;
-}
-
-/*
  * The module's own-truck figures: since the module learned to leave LFE1
  * and HRLFC to the engine, its estimate goes out in PFE_OwnFuel (rate,
  * total, whether the model is identified); it sends LFE1 and HRLFC only
@@ -1276,7 +1173,7 @@ typedef struct {
     size_t status_judged, status_normal;
     size_t lfe1, lfe1_na;
     size_t rate_frames, rate_disturbed; /* LFE1 and PFE_PlatoonFuel after warm-up */
-    size_t input_events, overrun_events;
+    size_t input_events, overrun_events, output_events;
     size_t csv_rows;
     plot_data_t plot;               /* what the CSV holds */
     size_t n_in, n_mod;
@@ -1456,6 +1353,7 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
     disturb_find(cap, (uint8_t)o->module_sa, &dist);
     a->input_events = dist.input_events;
     a->overrun_events = dist.overrun_events;
+    a->output_events = dist.output_events;
     inputs_t in = {0};
     size_t hint = 0U, shint = 0U;
     fprintf(csv, "time_s,speed_kmh,grade_pct,module_rate_l_h,ref_rate_l_h,module_total_l,ref_total_l\n");
@@ -1481,7 +1379,7 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
             note_own_rate(a, o, run, &dist, &in, &own, r, &ra, csv);
         }
     }
-    free(dist.spans);
+    disturb_free(&dist);
 }
 
 static void set_quantities(const analysis_t *a, const capture_t *cap, const ref_run_t *run)
@@ -1643,9 +1541,10 @@ static void print_summary(const options_t *o, const capture_t *cap, const analys
            "last; relative errors where the reference is at least %.1f L/h (%zu frames)\n",
            of ? "PFE_OwnFuel" : "LFE1", g_q[Q_LFE1].value, g_q[Q_LFE1_NA].value, o->warmup_s, o->floor_l_h, a->own.judged_pct);
     printf("  rates not judged: %zu of %zu (%s), within %.0f s after %zu input timing events and "
-           "%zu PFE_Status reports of %u or more lost ticks\n", a->rate_disturbed, a->rate_frames,
+           "%zu PFE_Status reports of %u or more lost ticks, and among %zu timing events of the "
+           "module's own frames\n", a->rate_disturbed, a->rate_frames,
            fmt_q(Q_DISTURBED_PCT, 1, "%", b1, sizeof b1), DISTURB_RECOVERY_US / 1e6, a->input_events,
-           a->overrun_events, LOST_TICKS_MIN);
+           a->overrun_events, DISTURB_LOST_TICKS_MIN, a->output_events);
     printf("  module status: tick overruns %s, rx dropped %s, tx dropped %s, normal mode %s\n",
            fmt_q(Q_OVERRUNS, 0, "", b1, sizeof b1), fmt_q(Q_RX_DROPPED, 0, "", b2, sizeof b2),
            fmt_q(Q_TX_DROPPED, 0, "", b3, sizeof b3), fmt_q(Q_NORMAL_PCT, 1, "%", b4, sizeof b4));

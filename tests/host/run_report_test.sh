@@ -126,6 +126,21 @@ input_gap() {
         has "$out/last.out" "rates not judged: [1-9][0-9]* of 500"
 }
 
+# The module's LFE1 and PFE_OwnFuel frames missing from 15.0 to 15.5 s (a
+# loop stalled, then catching up, as a capture shows it): two timing events
+# of the module's own frames, 500 ms apart against their 100 ms period; the
+# rates among them are left out and counted, and the verdict stands.
+output_gap() {
+    awk '!(($1 > "(1700000015.000000)") && ($1 < "(1700000015.500000)") &&
+           ($3 ~ /^18FEF28C#/ || $3 ~ /^18FF058C#/)) { print }' \
+        "$out/right.log" >"$out/outgap.log"
+    runs 0 "$report" "$out/outgap.log" --out "$out/outgap/report" --no-plot \
+        --expect "$out/accuracy.expect" &&
+        has "$out/last.out" "verdict PASS" &&
+        has "$out/last.out" "among 2 timing events of the module's own frames" &&
+        has "$out/last.out" "rates not judged: [1-9][0-9]* of "
+}
+
 bad_expectations() {
     printf 'max_rate_error_pct 1.0\n\n# fine so far\nfuel_l 1.0\n' >"$out/bad1.expect"
     runs 2 "$report" "$out/right.log" --out "$out/bad/report" --no-plot --expect "$out/bad1.expect" &&
@@ -238,6 +253,7 @@ check right_module right_module
 check other_phase other_phase
 check wrong_module wrong_module
 check input_gap input_gap
+check output_gap output_gap
 check bad_expectations bad_expectations
 check bad_capture bad_capture
 check not_measured not_measured

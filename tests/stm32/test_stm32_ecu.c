@@ -121,33 +121,10 @@ static void test_device_status_reports_the_controller_and_the_flash(void **state
     assert_int_equal(st.nvm_write_failing.value, 0U);
 }
 
-static void test_pacing_feeds_only_on_time(void **state)
-{
-    (void)state;
-    static pfe_ecu_t ecu;
-    memset(&ecu, 0, sizeof ecu);
-    uint64_t deadline = 0U;
-    assert_true(hal_stm32_ecu_pace(&ecu, &deadline, 5000U));   /* early */
-    assert_int_equal(deadline, 10000U);
-    assert_true(hal_stm32_ecu_pace(&ecu, &deadline, 20000U));  /* exactly at the next */
-    assert_int_equal(deadline, 20000U);
-    assert_false(hal_stm32_ecu_pace(&ecu, &deadline, 35000U)); /* late by half a tick */
-    assert_int_equal(deadline, 30000U);
-    assert_int_equal(ecu.count.overruns, 0U);
-    /* Late by 3.5 ticks past the next deadline (40000): 3 lost, deadlines
-     * from 70000 on. */
-    assert_false(hal_stm32_ecu_pace(&ecu, &deadline, 75000U));
-    assert_int_equal(deadline, 70000U);
-    assert_int_equal(ecu.count.overruns, 3U);
-    assert_true(hal_stm32_ecu_pace(&ecu, &deadline, 76000U));
-    assert_int_equal(deadline, 80000U);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_device_status_reports_the_controller_and_the_flash),
-        cmocka_unit_test(test_pacing_feeds_only_on_time),
     };
     return cmocka_run_group_tests_name("STM32 main loop on the register models", tests, NULL, NULL);
 }
