@@ -253,6 +253,132 @@ static void test_random_routes_with_trucks_of_length(void **state)
     assert_in_range(lround(1000.0 * sum_abs[1] / ROUTES), 1000, 3000); /* the gap policy: far off */
 }
 
+/*
+ * Each position's fuel with its own clipping (node_model.h,
+ * object_sim_position_fuel), 16.5 m trucks under the headway policy:
+ *   0  the policy's drag at the platoon's speed (object_sim_policy_drag),
+ *      eq. 4.14's one clipped sum;
+ *   1  the same, with eq. 4.11's clipping per position at the point;
+ *   2  the same, with the followers where the policy puts them
+ *      (OBJECT_FUEL_FOLLOWERS), each with its own speed, grade and gap;
+ *   3  the followers as 2 with eq. 4.7's drag in the point's dynamics.
+ * The issue's target is 0.3 % on the three roads and the 250 routes; no
+ * variant reaches it. The asserts hold what each reaches, with a little to
+ * spare, so that a change that moves them is seen.
+ */
+#define VARIANTS 4
+
+static void per_position(const node_config_t *cfg, const ref_road_t *road, double node_l, double out_pct[VARIANTS])
+{
+    static ref_platoon_t pl;
+    static object_sim_t o;
+    model_summary_t object;
+    assert_int_equal(object_platoon_build(&pl, cfg, OBJECT_NOMINAL), 0);
+    for (int v = 0; v < VARIANTS; v++) {
+        memset(&o, 0xA5, sizeof o);
+        assert_int_equal(object_sim_init(&o, &pl, cfg->cruise, road, cfg->set_speed_m_s, cfg->initial_speed_m_s,
+                                         cfg->step_s), 0);
+        if (v < 3) {
+            object_sim_policy_drag(&o, cfg);
+        }
+        if (v > 0) {
+            object_sim_position_fuel(&o, cfg, (v == 1) ? OBJECT_FUEL_POSITIONS : OBJECT_FUEL_FOLLOWERS);
+        }
+        assert_int_equal(object_sim_run(&o, &object), 0);
+        out_pct[v] = pct(object.fuel_l, node_l);
+    }
+}
+
+static double node_fuel(const node_config_t *cfg, const ref_road_t *road)
+{
+    model_summary_t node;
+    memset(&g_node, 0xA5, sizeof g_node);
+    assert_int_equal(node_sim_init(&g_node, cfg, road), 0);
+    assert_int_equal(node_sim_run(&g_node, &node), 0);
+    return node.fuel_l;
+}
+
+static const char *const k_variant[VARIANTS] = {"policy drag, one clipped sum", "policy drag, each position clipped",
+                                                "policy drag, followers where the policy puts them",
+                                                "followers, eq. 4.7 drag in the dynamics"};
+
+static void test_per_position_fuel_on_the_bundled_roads(void **state)
+{
+    (void)state;
+    static const char *const names[] = {"flat", "uphill", "hilly"};
+    /* measured, each with 0.03 % to spare: [road][variant] */
+    static const double limit_pct[3][VARIANTS] = {
+        {0.03, 0.03, 0.03, 0.03}, {0.11, 0.11, 0.08, 0.27}, {0.74, 0.76, 0.55, 0.49}};
+    for (size_t k = 0U; k < 3U; k++) {
+        char path[1024], err[512];
+        snprintf(path, sizeof path, "%s/%s.csv", g_roads_dir, names[k]);
+        node_road_t road;
+        if (node_road_load(path, &road, err, sizeof err) != 0) {
+            fail_msg("%s", err);
+        }
+        node_config_t cfg;
+        node_config_default(&cfg, 5U);
+        cfg.length_m = LENGTH_M;
+        cfg.spacing = NODE_SPACING_HEADWAY;
+        double e[VARIANTS];
+        per_position(&cfg, &road.road, node_fuel(&cfg, &road.road), e);
+        node_road_free(&road);
+        for (int v = 0; v < VARIANTS; v++) {
+            print_message("%-6s 16.5 m, headway, %-50s: object %+.3f %% of node\n", names[k], k_variant[v], e[v]);
+        }
+        for (int v = 0; v < VARIANTS; v++) {
+            assert_abs_within(e[v], limit_pct[k][v]);
+        }
+    }
+}
+
+static void test_per_position_fuel_on_random_routes(void **state)
+{
+    (void)state;
+    static int32_t mpct[ROUTE_HILLY_SAMPLES];
+    static double grade[ROUTE_HILLY_SAMPLES];
+    double worst[VARIANTS] = {0.0}, sum_abs[VARIANTS] = {0.0};
+    unsigned within[VARIANTS] = {0U};
+    uint64_t worst_seed[VARIANTS] = {0U};
+    for (uint64_t seed = 1U; seed <= ROUTES; seed++) {
+        route_gen_hilly(seed, mpct);
+        for (size_t k = 0U; k < ROUTE_HILLY_SAMPLES; k++) {
+            grade[k] = mpct[k] / 1000.0;
+        }
+        node_road_t r;
+        assert_int_equal(node_road_from_percent(grade, ROUTE_HILLY_SAMPLES, ROUTE_HILLY_SPACING_M, &r), 0);
+        node_config_t cfg;
+        node_config_default(&cfg, 5U);
+        cfg.length_m = LENGTH_M;
+        cfg.spacing = NODE_SPACING_HEADWAY;
+        double e[VARIANTS];
+        per_position(&cfg, &r.road, node_fuel(&cfg, &r.road), e);
+        node_road_free(&r);
+        for (int v = 0; v < VARIANTS; v++) {
+            sum_abs[v] += fabs(e[v]);
+            within[v] += (fabs(e[v]) <= 0.3) ? 1U : 0U;
+            if (fabs(e[v]) > fabs(worst[v])) {
+                worst[v] = e[v];
+                worst_seed[v] = seed;
+            }
+        }
+    }
+    for (int v = 0; v < VARIANTS; v++) {
+        print_message("%u routes, 16.5 m, headway, %-50s: within 0.3 %% on %u, mean |difference| %.3f %%, "
+                      "worst %+.3f %% (seed %" PRIu64 ")\n",
+                      ROUTES, k_variant[v], within[v], sum_abs[v] / ROUTES, worst[v], worst_seed[v]);
+    }
+    /* measured: [mean |difference| in thousandths of a percent, worst, routes within 0.3 %] */
+    static const long mean_limit[VARIANTS] = {420, 420, 340, 370};
+    static const double worst_limit[VARIANTS] = {1.80, 1.80, 1.50, 1.58};
+    static const unsigned within_least[VARIANTS] = {115U, 115U, 140U, 129U};
+    for (int v = 0; v < VARIANTS; v++) {
+        assert_in_range(lround(1000.0 * sum_abs[v] / ROUTES), 0, mean_limit[v]);
+        assert_abs_within(worst[v], worst_limit[v]);
+        assert_in_range(within[v], within_least[v], ROUTES);
+    }
+}
+
 int main(int argc, char **argv)
 {
     g_roads_dir = (argc > 1) ? argv[1] : getenv("PFE_ROADS_DIR");
@@ -265,6 +391,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_headway_is_the_gap_policy_for_point_masses),
         cmocka_unit_test(test_bundled_roads_with_trucks_of_length),
         cmocka_unit_test(test_random_routes_with_trucks_of_length),
+        cmocka_unit_test(test_per_position_fuel_on_the_bundled_roads),
+        cmocka_unit_test(test_per_position_fuel_on_random_routes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
