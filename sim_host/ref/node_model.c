@@ -486,7 +486,7 @@ void object_sim_position_fuel(object_sim_t *s, const node_config_t *cfg, object_
 {
     s->fuel_by = (cfg == NULL) ? OBJECT_FUEL_AGGREGATE : how;
     s->fuel_cfg = cfg;
-    if (s->fuel_by == OBJECT_FUEL_FOLLOWERS) {
+    if (s->fuel_by >= OBJECT_FUEL_FOLLOWERS) {
         const double spacing = cfg->length_m + node_desired_gap_m(cfg, s->speed_m_s);
         for (unsigned i = 0U; i < cfg->n_vehicles; i++) {
             s->pos_x_m[i] = s->position_m - ((double)i * spacing);
@@ -495,37 +495,52 @@ void object_sim_position_fuel(object_sim_t *s, const node_config_t *cfg, object_
     }
 }
 
-/* Eq. 3.7 to 3.11 of one position, small angles (eq. 4.8, 4.9), with the
- * drag reduction of its gap; L over a step of ds and dt, 0 when coasting. */
-static double position_fuel_l(const node_config_t *cfg, unsigned i, double gap_m, double v, double a,
-                              double grade, double ds, double dt)
+/* One position's chapter 3 coefficients with the drag reduction of its gap,
+ * and its resistance at speed v on a grade in the small angles of eq. 4.8
+ * and 4.9, N. */
+static double position_resistance(const node_config_t *cfg, unsigned i, double gap_m, double v, double grade,
+                                  ref_vehicle_t *t)
 {
     const unsigned n = cfg->n_vehicles;
-    ref_vehicle_t t;
-    ref_vehicle_init(&t, cfg->vehicle[i], cfg->env, (n > 1U) ? ref_drag_reduction_pct(cfg->drag, i, n, gap_m) : 0.0);
+    ref_vehicle_init(t, cfg->vehicle[i], cfg->env, (n > 1U) ? ref_drag_reduction_pct(cfg->drag, i, n, gap_m) : 0.0);
     const double g = cfg->env->gravity_um_s2 / 1e6;
-    const double f = (t.mass_fuel * a) + (t.air_k * v * v) + (t.roll_mass * g) +
-                     (t.mass * g * clamp(grade, -0.5, 0.5));                      /* eq. 3.7 */
-    return (f > 0.0) ? ((f * ds) + (t.power_aux * dt)) * t.fuel_per_j : 0.0;   /* eq. 3.9, 3.11 */
+    return (t->air_k * v * v) + (t->roll_mass * g) + (t->mass * g * clamp(grade, -0.5, 0.5));
 }
 
-/* OBJECT_FUEL_FOLLOWERS: the followers' new places and speeds (the policy's
- * kinematics in object_sim_position_fuel), given the point's new place x1
- * and speed v1, and every position's fuel over the step. Returns the fuel. */
+/* Eq. 3.7 to 3.11 of one position over a step of ds and dt, L; 0 when
+ * coasting (eq. 3.9). */
+static double position_fuel_l(const ref_vehicle_t *t, double resist, double a, double ds, double dt)
+{
+    const double f = (t->mass_fuel * a) + resist;                                  /* eq. 3.7 */
+    return (f > 0.0) ? ((f * ds) + (t->power_aux * dt)) * t->fuel_per_j : 0.0;   /* eq. 3.11 */
+}
+
+/* OBJECT_FUEL_FOLLOWERS(_LIMITED): the followers' new places and speeds
+ * (the policy's kinematics in object_sim_position_fuel),
+ * given the point's new place x1 and speed v1, and every position's fuel
+ * over the step. Returns the fuel. */
 static double followers_step(object_sim_t *s, double x1, double v1, double dt)
 {
     const node_config_t *cfg = s->fuel_cfg;
     const unsigned n = cfg->n_vehicles;
     const bool headway = cfg->spacing == NODE_SPACING_HEADWAY;
+    const bool limited = s->fuel_by == OBJECT_FUEL_FOLLOWERS_LIMITED;
     const double tau = headway ? node_headway_s(cfg) : cfg->time_gap_s;
     const double c = headway ? 0.0 : (cfg->length_m + cfg->standstill_m);
     const double v_floor = headway ? ((cfg->length_m + cfg->headway_floor_m) / tau) : 0.0;
-    double x_new[NODE_MAX_VEHICLES], v_new[NODE_MAX_VEHICLES];
+    double x_new[NODE_MAX_VEHICLES], v_new[NODE_MAX_VEHICLES], resist[NODE_MAX_VEHICLES];
+    ref_vehicle_t t[NODE_MAX_VEHICLES];
     x_new[0] = x1;
     v_new[0] = v1;
-    for (unsigned i = 1U; i < n; i++) {
+    for (unsigned i = 0U; i < n; i++) {
         const double x = s->pos_x_m[i];
         const double v = s->pos_v_m_s[i];
+        const double gap = (n < 2U) ? 0.0
+            : ((i == 0U) ? (x - s->pos_x_m[1] - cfg->length_m) : (s->pos_x_m[i - 1U] - x - cfg->length_m));
+        resist[i] = position_resistance(cfg, i, gap, v, node_road_grade(s->road, x + (v * dt / 2.0)), &t[i]);
+        if (i == 0U) {
+            continue;
+        }
         double vi = v_new[i - 1U];
         if (tau > 0.0) {
             /* x' = x + dt / 2 (v + (x_(i-1)' - x' - c) / tau), solved for x' */
@@ -534,6 +549,13 @@ static double followers_step(object_sim_t *s, double x1, double v1, double dt)
         }
         if (vi < v_floor) {
             vi = fmin(v_new[i - 1U], v_floor);
+        }
+        if (limited) {
+            /* the followers' own speed cap, and the truck's force limits,
+             * -Fb_max .. min(Pmax / v, traction) */
+            const double a_hi = (ref_wheel_force_max(t[i].power_max, t[i].traction_max, v) - resist[i]) / t[i].mass;
+            const double a_lo = (-t[i].brake_max - resist[i]) / t[i].mass;
+            vi = clamp(fmin(vi, cfg->set_speed_m_s + cfg->follow_margin_m_s), v + (a_lo * dt), v + (a_hi * dt));
         }
         v_new[i] = fmax(vi, 0.0);
         x_new[i] = x + ((v + v_new[i]) * dt / 2.0);
@@ -544,16 +566,9 @@ static double followers_step(object_sim_t *s, double x1, double v1, double dt)
         const double v = s->pos_v_m_s[i];
         const double ds = x_new[i] - x;
         const double w = on_road(x, ds, s->end_m);
-        if (w > 0.0) {
-            const double gap = (n < 2U) ? 0.0
-                : ((i == 0U) ? (x - s->pos_x_m[1] - cfg->length_m) : (s->pos_x_m[i - 1U] - x - cfg->length_m));
-            const double f = w * position_fuel_l(cfg, i, gap, v, (v_new[i] - v) / dt,
-                                                 node_road_grade(s->road, x + (v * dt / 2.0)), ds, dt);
-            s->pos_fuel_l[i] += f;
-            fuel += f;
-        }
-    }
-    for (unsigned i = 0U; i < n; i++) {
+        const double f = (w > 0.0) ? w * position_fuel_l(&t[i], resist[i], (v_new[i] - v) / dt, ds, dt) : 0.0;
+        s->pos_fuel_l[i] += f;
+        fuel += f;
         s->pos_x_m[i] = x_new[i];
         s->pos_v_m_s[i] = v_new[i];
     }
@@ -568,7 +583,9 @@ static double positions_at_point(object_sim_t *s, double v, double a, double gra
     const double gap = node_desired_gap_m(cfg, v);
     double fuel = 0.0;
     for (unsigned i = 0U; (i < cfg->n_vehicles) && (w > 0.0); i++) {
-        const double f = w * position_fuel_l(cfg, i, gap, v, a, grade, ds, dt);
+        ref_vehicle_t t;
+        const double resist = position_resistance(cfg, i, gap, v, grade, &t);
+        const double f = w * position_fuel_l(&t, resist, a, ds, dt);
         s->pos_fuel_l[i] += f;
         fuel += f;
     }
@@ -590,7 +607,7 @@ static double object_grade(const object_sim_t *s, double at_m)
 
 int object_sim_step(object_sim_t *s)
 {
-    const bool followers = s->fuel_by == OBJECT_FUEL_FOLLOWERS;
+    const bool followers = s->fuel_by >= OBJECT_FUEL_FOLLOWERS;
     if ((followers ? s->pos_x_m[s->fuel_cfg->n_vehicles - 1U] : s->position_m) >= s->end_m) {
         return 0;
     }

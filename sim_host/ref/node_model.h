@@ -293,7 +293,12 @@ typedef enum { OBJECT_NOMINAL, OBJECT_SLOWEST, OBJECT_FASTEST } object_choice_t;
 int object_platoon_build(ref_platoon_t *pl, const node_config_t *cfg, object_choice_t choice);
 
 /* How the object model counts fuel: object_sim_position_fuel below. */
-typedef enum { OBJECT_FUEL_AGGREGATE = 0, OBJECT_FUEL_POSITIONS, OBJECT_FUEL_FOLLOWERS } object_fuel_t;
+typedef enum {
+    OBJECT_FUEL_AGGREGATE = 0,
+    OBJECT_FUEL_POSITIONS,
+    OBJECT_FUEL_FOLLOWERS,
+    OBJECT_FUEL_FOLLOWERS_LIMITED
+} object_fuel_t;
 
 typedef struct {
     const ref_platoon_t *pl;
@@ -387,19 +392,26 @@ void object_sim_policy_drag(object_sim_t *s, const node_config_t *cfg);
  *                          its own delta_i, counted while it is on the road;
  *                          a run ends when the last position leaves the
  *                          road (the point runs on over the last grade).
- *                          The followers' force limits are not applied (a
- *                          policy the trucks cannot hold is not this
- *                          model's case).
+ *                          No force limits: the policy held exactly.
+ *   OBJECT_FUEL_FOLLOWERS_LIMITED  as above, each follower's speed held
+ *                          within what its own forces reach over the step
+ *                          (-Fb_max to min(Pmax / v, traction) against its
+ *                          resistance, over its mass) and below the
+ *                          followers' cap, set speed + follow_margin_m_s
+ *                          (node_model.h): a follower the policy asks for
+ *                          more than it can give falls back, and catches up
+ *                          at the speed the policy's gap then asks for.
  *
  * cfg is the nominal platoon (kept by pointer, identical trucks as for
  * object_sim_policy_drag). Cost per step: one fuel evaluation and one
  * drag-table look-up per position; OBJECT_FUEL_FOLLOWERS adds a grade read
- * and the kinematic update (a division) per follower. What each variant
+ * and the kinematic update per follower (a division; _LIMITED: one more
+ * for the force limits). What each variant
  * reaches against the node model: tests/host/test_truck_length.c. Call
  * after object_sim_init.
  */
 void object_sim_position_fuel(object_sim_t *s, const node_config_t *cfg, object_fuel_t how);
-/* Returns 1, 0 (past the end of the road; OBJECT_FUEL_FOLLOWERS: the last
+/* Returns 1, 0 (past the end of the road; OBJECT_FUEL_FOLLOWERS(_LIMITED): the last
  * position past it) or -1 (stalled below 1 m/s). */
 int object_sim_step(object_sim_t *s);
 int object_sim_run(object_sim_t *s, model_summary_t *out);
