@@ -81,6 +81,28 @@ static void compare(const node_config_t *cfg, const ref_road_t *road, compare_t 
     }
 }
 
+/* A bundled road by name (flat, uphill, hilly) into *road. */
+static void load_bundled(const char *name, node_road_t *road)
+{
+    char path[1024], err[512];
+    snprintf(path, sizeof path, "%s/%s.csv", g_roads_dir, name);
+    if (node_road_load(path, road, err, sizeof err) != 0) {
+        fail_msg("%s", err);
+    }
+}
+
+/* The seeded random hilly route (route_gen.h) into *road. */
+static void load_route(uint64_t seed, node_road_t *road)
+{
+    static int32_t mpct[ROUTE_HILLY_SAMPLES];
+    static double grade[ROUTE_HILLY_SAMPLES];
+    route_gen_hilly(seed, mpct);
+    for (size_t k = 0U; k < ROUTE_HILLY_SAMPLES; k++) {
+        grade[k] = mpct[k] / 1000.0;
+    }
+    assert_int_equal(node_road_from_percent(grade, ROUTE_HILLY_SAMPLES, ROUTE_HILLY_SPACING_M, road), 0);
+}
+
 static double pct(double x, double ref)
 {
     return 100.0 * (x - ref) / ref;
@@ -118,12 +140,8 @@ static void test_headway_gap_is_hand_computed(void **state)
 static void test_headway_is_the_gap_policy_for_point_masses(void **state)
 {
     (void)state;
-    char path[1024], err[512];
-    snprintf(path, sizeof path, "%s/hilly.csv", g_roads_dir);
     node_road_t road;
-    if (node_road_load(path, &road, err, sizeof err) != 0) {
-        fail_msg("%s", err);
-    }
+    load_bundled("hilly", &road);
     node_config_t cfg;
     node_config_default(&cfg, 5U);
     cfg.length_m = 0.0;
@@ -146,12 +164,8 @@ static void test_bundled_roads_with_trucks_of_length(void **state)
     /* the figures node_model.h states, each with 0.05 % to spare */
     static const double headway_limit_pct[] = {0.05, 0.81, 1.36};
     for (size_t k = 0U; k < 3U; k++) {
-        char path[1024], err[512];
-        snprintf(path, sizeof path, "%s/%s.csv", g_roads_dir, names[k]);
         node_road_t road;
-        if (node_road_load(path, &road, err, sizeof err) != 0) {
-            fail_msg("%s", err);
-        }
+        load_bundled(names[k], &road);
         node_config_t cfg;
         node_config_default(&cfg, 5U);
         compare_t point, gap, headway;
@@ -192,19 +206,13 @@ static void test_bundled_roads_with_trucks_of_length(void **state)
 static void test_random_routes_with_trucks_of_length(void **state)
 {
     (void)state;
-    static int32_t mpct[ROUTE_HILLY_SAMPLES];
-    static double grade[ROUTE_HILLY_SAMPLES];
     double worst[4] = {0.0, 0.0, 0.0, 0.0}, sum_abs[4] = {0.0, 0.0, 0.0, 0.0}, smallest_gap = INFINITY;
     unsigned within[4] = {0U, 0U, 0U, 0U}, below_2m = 0U, below_2m_no_floor = 0U;
     double smallest_no_floor = INFINITY;
     uint64_t worst_seed[4] = {0U, 0U, 0U, 0U}, gap_seed = 0U;
     for (uint64_t seed = 1U; seed <= ROUTES; seed++) {
-        route_gen_hilly(seed, mpct);
-        for (size_t k = 0U; k < ROUTE_HILLY_SAMPLES; k++) {
-            grade[k] = mpct[k] / 1000.0;
-        }
         node_road_t r;
-        assert_int_equal(node_road_from_percent(grade, ROUTE_HILLY_SAMPLES, ROUTE_HILLY_SPACING_M, &r), 0);
+        load_route(seed, &r);
         node_config_t cfg;
         node_config_default(&cfg, 5U);
         compare_t c[4];
@@ -270,11 +278,29 @@ static void test_random_routes_with_trucks_of_length(void **state)
  */
 #define VARIANTS 5
 
-static void per_position(const node_config_t *cfg, const ref_road_t *road, double node_l, double out_pct[VARIANTS])
+static double node_fuel(const node_config_t *cfg, const ref_road_t *road)
+{
+    model_summary_t node;
+    memset(&g_node, 0xA5, sizeof g_node);
+    assert_int_equal(node_sim_init(&g_node, cfg, road), 0);
+    assert_int_equal(node_sim_run(&g_node, &node), 0);
+    return node.fuel_l;
+}
+
+/* The five 16.5 m trucks under the headway policy on *r (freed): each
+ * variant's fuel against the node model's, %. */
+static void per_position(node_road_t *r, double out_pct[VARIANTS])
 {
     static ref_platoon_t pl;
     static object_sim_t o;
     model_summary_t object;
+    node_config_t config;
+    node_config_default(&config, 5U);
+    config.length_m = LENGTH_M;
+    config.spacing = NODE_SPACING_HEADWAY;
+    const node_config_t *cfg = &config;
+    const ref_road_t *road = &r->road;
+    const double node_l = node_fuel(cfg, road);
     assert_int_equal(object_platoon_build(&pl, cfg, OBJECT_NOMINAL), 0);
     for (int v = 0; v < VARIANTS; v++) {
         memset(&o, 0xA5, sizeof o);
@@ -289,15 +315,7 @@ static void per_position(const node_config_t *cfg, const ref_road_t *road, doubl
         assert_int_equal(object_sim_run(&o, &object), 0);
         out_pct[v] = pct(object.fuel_l, node_l);
     }
-}
-
-static double node_fuel(const node_config_t *cfg, const ref_road_t *road)
-{
-    model_summary_t node;
-    memset(&g_node, 0xA5, sizeof g_node);
-    assert_int_equal(node_sim_init(&g_node, cfg, road), 0);
-    assert_int_equal(node_sim_run(&g_node, &node), 0);
-    return node.fuel_l;
+    node_road_free(r);
 }
 
 static const char *const k_variant[VARIANTS] = {"policy drag, one clipped sum", "policy drag, each position clipped",
@@ -313,19 +331,10 @@ static void test_per_position_fuel_on_the_bundled_roads(void **state)
     static const double limit_pct[3][VARIANTS] = {
         {0.03, 0.03, 0.03, 0.03, 0.03}, {0.11, 0.11, 0.08, 0.27, 0.05}, {0.74, 0.76, 0.55, 0.49, 0.87}};
     for (size_t k = 0U; k < 3U; k++) {
-        char path[1024], err[512];
-        snprintf(path, sizeof path, "%s/%s.csv", g_roads_dir, names[k]);
         node_road_t road;
-        if (node_road_load(path, &road, err, sizeof err) != 0) {
-            fail_msg("%s", err);
-        }
-        node_config_t cfg;
-        node_config_default(&cfg, 5U);
-        cfg.length_m = LENGTH_M;
-        cfg.spacing = NODE_SPACING_HEADWAY;
+        load_bundled(names[k], &road);
         double e[VARIANTS];
-        per_position(&cfg, &road.road, node_fuel(&cfg, &road.road), e);
-        node_road_free(&road);
+        per_position(&road, e);
         for (int v = 0; v < VARIANTS; v++) {
             print_message("%-6s 16.5 m, headway, %-50s: object %+.3f %% of node\n", names[k], k_variant[v], e[v]);
         }
@@ -338,25 +347,14 @@ static void test_per_position_fuel_on_the_bundled_roads(void **state)
 static void test_per_position_fuel_on_random_routes(void **state)
 {
     (void)state;
-    static int32_t mpct[ROUTE_HILLY_SAMPLES];
-    static double grade[ROUTE_HILLY_SAMPLES];
     double worst[VARIANTS] = {0.0}, sum_abs[VARIANTS] = {0.0};
     unsigned within[VARIANTS] = {0U};
     uint64_t worst_seed[VARIANTS] = {0U};
     for (uint64_t seed = 1U; seed <= ROUTES; seed++) {
-        route_gen_hilly(seed, mpct);
-        for (size_t k = 0U; k < ROUTE_HILLY_SAMPLES; k++) {
-            grade[k] = mpct[k] / 1000.0;
-        }
         node_road_t r;
-        assert_int_equal(node_road_from_percent(grade, ROUTE_HILLY_SAMPLES, ROUTE_HILLY_SPACING_M, &r), 0);
-        node_config_t cfg;
-        node_config_default(&cfg, 5U);
-        cfg.length_m = LENGTH_M;
-        cfg.spacing = NODE_SPACING_HEADWAY;
+        load_route(seed, &r);
         double e[VARIANTS];
-        per_position(&cfg, &r.road, node_fuel(&cfg, &r.road), e);
-        node_road_free(&r);
+        per_position(&r, e);
         for (int v = 0; v < VARIANTS; v++) {
             sum_abs[v] += fabs(e[v]);
             within[v] += (fabs(e[v]) <= 0.3) ? 1U : 0U;
