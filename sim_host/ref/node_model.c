@@ -482,6 +482,116 @@ static void policy_air_k(const node_config_t *cfg, double mass, double v, double
     *formation = fmax(0.0, (most * mass) - k);
 }
 
+void object_sim_position_fuel(object_sim_t *s, const node_config_t *cfg, object_fuel_t how)
+{
+    s->fuel_by = (cfg == NULL) ? OBJECT_FUEL_AGGREGATE : how;
+    s->fuel_cfg = cfg;
+    if (s->fuel_by >= OBJECT_FUEL_FOLLOWERS) {
+        const double spacing = cfg->length_m + node_desired_gap_m(cfg, s->speed_m_s);
+        for (unsigned i = 0U; i < cfg->n_vehicles; i++) {
+            s->pos_x_m[i] = s->position_m - ((double)i * spacing);
+            s->pos_v_m_s[i] = s->speed_m_s;
+        }
+    }
+}
+
+/* One position's chapter 3 coefficients with the drag reduction of its gap,
+ * and its resistance at speed v on a grade in the small angles of eq. 4.8
+ * and 4.9, N. */
+static double position_resistance(const node_config_t *cfg, unsigned i, double gap_m, double v, double grade,
+                                  ref_vehicle_t *t)
+{
+    const unsigned n = cfg->n_vehicles;
+    ref_vehicle_init(t, cfg->vehicle[i], cfg->env, (n > 1U) ? ref_drag_reduction_pct(cfg->drag, i, n, gap_m) : 0.0);
+    const double g = cfg->env->gravity_um_s2 / 1e6;
+    return (t->air_k * v * v) + (t->roll_mass * g) + (t->mass * g * clamp(grade, -0.5, 0.5));
+}
+
+/* Eq. 3.7 to 3.11 of one position over a step of ds and dt, L; 0 when
+ * coasting (eq. 3.9). */
+static double position_fuel_l(const ref_vehicle_t *t, double resist, double a, double ds, double dt)
+{
+    const double f = (t->mass_fuel * a) + resist;                                  /* eq. 3.7 */
+    return (f > 0.0) ? ((f * ds) + (t->power_aux * dt)) * t->fuel_per_j : 0.0;   /* eq. 3.11 */
+}
+
+/* OBJECT_FUEL_FOLLOWERS(_LIMITED): the followers' new places and speeds
+ * (the policy's kinematics in object_sim_position_fuel),
+ * given the point's new place x1 and speed v1, and every position's fuel
+ * over the step. Returns the fuel. */
+static double followers_step(object_sim_t *s, double x1, double v1, double dt)
+{
+    const node_config_t *cfg = s->fuel_cfg;
+    const unsigned n = cfg->n_vehicles;
+    const bool headway = cfg->spacing == NODE_SPACING_HEADWAY;
+    const bool limited = s->fuel_by == OBJECT_FUEL_FOLLOWERS_LIMITED;
+    const double tau = headway ? node_headway_s(cfg) : cfg->time_gap_s;
+    const double c = headway ? 0.0 : (cfg->length_m + cfg->standstill_m);
+    const double v_floor = headway ? ((cfg->length_m + cfg->headway_floor_m) / tau) : 0.0;
+    double x_new[NODE_MAX_VEHICLES], v_new[NODE_MAX_VEHICLES], resist[NODE_MAX_VEHICLES];
+    ref_vehicle_t t[NODE_MAX_VEHICLES];
+    x_new[0] = x1;
+    v_new[0] = v1;
+    for (unsigned i = 0U; i < n; i++) {
+        const double x = s->pos_x_m[i];
+        const double v = s->pos_v_m_s[i];
+        const double gap = (n < 2U) ? 0.0
+            : ((i == 0U) ? (x - s->pos_x_m[1] - cfg->length_m) : (s->pos_x_m[i - 1U] - x - cfg->length_m));
+        resist[i] = position_resistance(cfg, i, gap, v, node_road_grade(s->road, x + (v * dt / 2.0)), &t[i]);
+        if (i == 0U) {
+            continue;
+        }
+        double vi = v_new[i - 1U];
+        if (tau > 0.0) {
+            /* x' = x + dt / 2 (v + (x_(i-1)' - x' - c) / tau), solved for x' */
+            const double xi = (x + ((dt / 2.0) * (v + ((x_new[i - 1U] - c) / tau)))) / (1.0 + (dt / (2.0 * tau)));
+            vi = (x_new[i - 1U] - xi - c) / tau;
+        }
+        if (vi < v_floor) {
+            vi = fmin(v_new[i - 1U], v_floor);
+        }
+        if (limited) {
+            /* the followers' own speed cap, and the truck's force limits,
+             * -Fb_max .. min(Pmax / v, traction) */
+            const double a_hi = (ref_wheel_force_max(t[i].power_max, t[i].traction_max, v) - resist[i]) / t[i].mass;
+            const double a_lo = (-t[i].brake_max - resist[i]) / t[i].mass;
+            vi = clamp(fmin(vi, cfg->set_speed_m_s + cfg->follow_margin_m_s), v + (a_lo * dt), v + (a_hi * dt));
+        }
+        v_new[i] = fmax(vi, 0.0);
+        x_new[i] = x + ((v + v_new[i]) * dt / 2.0);
+    }
+    double fuel = 0.0;
+    for (unsigned i = 0U; i < n; i++) {
+        const double x = s->pos_x_m[i];
+        const double v = s->pos_v_m_s[i];
+        const double ds = x_new[i] - x;
+        const double w = on_road(x, ds, s->end_m);
+        const double f = (w > 0.0) ? w * position_fuel_l(&t[i], resist[i], (v_new[i] - v) / dt, ds, dt) : 0.0;
+        s->pos_fuel_l[i] += f;
+        fuel += f;
+        s->pos_x_m[i] = x_new[i];
+        s->pos_v_m_s[i] = v_new[i];
+    }
+    return fuel;
+}
+
+/* OBJECT_FUEL_POSITIONS: every position at the point, each with its own
+ * clipping; w the fraction of the step on the road. */
+static double positions_at_point(object_sim_t *s, double v, double a, double grade, double ds, double dt, double w)
+{
+    const node_config_t *cfg = s->fuel_cfg;
+    const double gap = node_desired_gap_m(cfg, v);
+    double fuel = 0.0;
+    for (unsigned i = 0U; (i < cfg->n_vehicles) && (w > 0.0); i++) {
+        ref_vehicle_t t;
+        const double resist = position_resistance(cfg, i, gap, v, grade, &t);
+        const double f = w * position_fuel_l(&t, resist, a, ds, dt);
+        s->pos_fuel_l[i] += f;
+        fuel += f;
+    }
+    return fuel;
+}
+
 static double object_grade(const object_sim_t *s, double at_m)
 {
     if (s->grade_points <= 1U) {
@@ -497,7 +607,8 @@ static double object_grade(const object_sim_t *s, double at_m)
 
 int object_sim_step(object_sim_t *s)
 {
-    if (s->position_m >= s->end_m) {
+    const bool followers = s->fuel_by >= OBJECT_FUEL_FOLLOWERS;
+    if ((followers ? s->pos_x_m[s->fuel_cfg->n_vehicles - 1U] : s->position_m) >= s->end_m) {
         return 0;
     }
     const double v = s->speed_m_s;
@@ -509,7 +620,8 @@ int object_sim_step(object_sim_t *s)
     const double dt = s->step_s;
     const double x = s->position_m;
     const double mid = x + (v * dt / 2.0);
-    double resist = ref_object_resistance(pl, v, object_grade(s, mid));
+    const double grade = object_grade(s, mid);
+    double resist = ref_object_resistance(pl, v, grade);
     double f_max = ref_platoon_force_max(pl, v);
     if (s->policy_drag != NULL) {
         double k, formation;
@@ -524,12 +636,20 @@ int object_sim_step(object_sim_t *s)
     const double w = on_road(x, ds, s->end_m);
     const double fuel_force = (o->mass_fuel * accel) + resist;           /* eq. 3.7 */
     const bool on = fuel_force > 0.0;                                     /* eq. 3.9 */
-    if (on) {
+    if (followers) {
+        s->fuel_l += followers_step(s, x + ds, v1, dt);
+    } else if (s->fuel_by == OBJECT_FUEL_POSITIONS) {
+        s->fuel_l += positions_at_point(s, v, accel, grade, ds, dt, w);       /* eq. 4.11 */
+    } else if (on) {
         s->fuel_l += w * ((fuel_force * ds) + (o->power_aux * dt)) * o->fuel_per_j; /* eq. 4.14 */
+    } else {
+        /* coasting: no fuel */
     }
     s->time_s += w * dt;
-    s->min_speed_m_s = fmin(s->min_speed_m_s, fmin(v, v1));
-    s->max_speed_m_s = fmax(s->max_speed_m_s, fmax(v, v1));
+    if (w > 0.0) {
+        s->min_speed_m_s = fmin(s->min_speed_m_s, fmin(v, v1));
+        s->max_speed_m_s = fmax(s->max_speed_m_s, fmax(v, v1));
+    }
     s->last_speed_m_s = v;
     s->last_ds_m = ds;
     s->last_dt_s = dt;

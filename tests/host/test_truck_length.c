@@ -81,6 +81,28 @@ static void compare(const node_config_t *cfg, const ref_road_t *road, compare_t 
     }
 }
 
+/* A bundled road by name (flat, uphill, hilly) into *road. */
+static void load_bundled(const char *name, node_road_t *road)
+{
+    char path[1024], err[512];
+    snprintf(path, sizeof path, "%s/%s.csv", g_roads_dir, name);
+    if (node_road_load(path, road, err, sizeof err) != 0) {
+        fail_msg("%s", err);
+    }
+}
+
+/* The seeded random hilly route (route_gen.h) into *road. */
+static void load_route(uint64_t seed, node_road_t *road)
+{
+    static int32_t mpct[ROUTE_HILLY_SAMPLES];
+    static double grade[ROUTE_HILLY_SAMPLES];
+    route_gen_hilly(seed, mpct);
+    for (size_t k = 0U; k < ROUTE_HILLY_SAMPLES; k++) {
+        grade[k] = mpct[k] / 1000.0;
+    }
+    assert_int_equal(node_road_from_percent(grade, ROUTE_HILLY_SAMPLES, ROUTE_HILLY_SPACING_M, road), 0);
+}
+
 static double pct(double x, double ref)
 {
     return 100.0 * (x - ref) / ref;
@@ -118,12 +140,8 @@ static void test_headway_gap_is_hand_computed(void **state)
 static void test_headway_is_the_gap_policy_for_point_masses(void **state)
 {
     (void)state;
-    char path[1024], err[512];
-    snprintf(path, sizeof path, "%s/hilly.csv", g_roads_dir);
     node_road_t road;
-    if (node_road_load(path, &road, err, sizeof err) != 0) {
-        fail_msg("%s", err);
-    }
+    load_bundled("hilly", &road);
     node_config_t cfg;
     node_config_default(&cfg, 5U);
     cfg.length_m = 0.0;
@@ -146,12 +164,8 @@ static void test_bundled_roads_with_trucks_of_length(void **state)
     /* the figures node_model.h states, each with 0.05 % to spare */
     static const double headway_limit_pct[] = {0.05, 0.81, 1.36};
     for (size_t k = 0U; k < 3U; k++) {
-        char path[1024], err[512];
-        snprintf(path, sizeof path, "%s/%s.csv", g_roads_dir, names[k]);
         node_road_t road;
-        if (node_road_load(path, &road, err, sizeof err) != 0) {
-            fail_msg("%s", err);
-        }
+        load_bundled(names[k], &road);
         node_config_t cfg;
         node_config_default(&cfg, 5U);
         compare_t point, gap, headway;
@@ -192,19 +206,13 @@ static void test_bundled_roads_with_trucks_of_length(void **state)
 static void test_random_routes_with_trucks_of_length(void **state)
 {
     (void)state;
-    static int32_t mpct[ROUTE_HILLY_SAMPLES];
-    static double grade[ROUTE_HILLY_SAMPLES];
     double worst[4] = {0.0, 0.0, 0.0, 0.0}, sum_abs[4] = {0.0, 0.0, 0.0, 0.0}, smallest_gap = INFINITY;
     unsigned within[4] = {0U, 0U, 0U, 0U}, below_2m = 0U, below_2m_no_floor = 0U;
     double smallest_no_floor = INFINITY;
     uint64_t worst_seed[4] = {0U, 0U, 0U, 0U}, gap_seed = 0U;
     for (uint64_t seed = 1U; seed <= ROUTES; seed++) {
-        route_gen_hilly(seed, mpct);
-        for (size_t k = 0U; k < ROUTE_HILLY_SAMPLES; k++) {
-            grade[k] = mpct[k] / 1000.0;
-        }
         node_road_t r;
-        assert_int_equal(node_road_from_percent(grade, ROUTE_HILLY_SAMPLES, ROUTE_HILLY_SPACING_M, &r), 0);
+        load_route(seed, &r);
         node_config_t cfg;
         node_config_default(&cfg, 5U);
         compare_t c[4];
@@ -253,6 +261,125 @@ static void test_random_routes_with_trucks_of_length(void **state)
     assert_in_range(lround(1000.0 * sum_abs[1] / ROUTES), 1000, 3000); /* the gap policy: far off */
 }
 
+/*
+ * Each position's fuel with its own clipping (node_model.h,
+ * object_sim_position_fuel), 16.5 m trucks under the headway policy:
+ *   0  the policy's drag at the platoon's speed (object_sim_policy_drag),
+ *      eq. 4.14's one clipped sum;
+ *   1  the same, with eq. 4.11's clipping per position at the point;
+ *   2  the same, with the followers where the policy puts them
+ *      (OBJECT_FUEL_FOLLOWERS), each with its own speed, grade and gap;
+ *   3  the followers as 2 with eq. 4.7's drag in the point's dynamics;
+ *   4  the followers as 2 within their force limits and speed cap
+ *      (OBJECT_FUEL_FOLLOWERS_LIMITED).
+ * The issue's target is 0.3 % on the three roads and the 250 routes; no
+ * variant reaches it. The asserts hold what each reaches, with a little to
+ * spare, so that a change that moves them is seen.
+ */
+#define VARIANTS 5
+
+static double node_fuel(const node_config_t *cfg, const ref_road_t *road)
+{
+    model_summary_t node;
+    memset(&g_node, 0xA5, sizeof g_node);
+    assert_int_equal(node_sim_init(&g_node, cfg, road), 0);
+    assert_int_equal(node_sim_run(&g_node, &node), 0);
+    return node.fuel_l;
+}
+
+/* The five 16.5 m trucks under the headway policy on *r (freed): each
+ * variant's fuel against the node model's, %. */
+static void per_position(node_road_t *r, double out_pct[VARIANTS])
+{
+    static ref_platoon_t pl;
+    static object_sim_t o;
+    model_summary_t object;
+    node_config_t config;
+    node_config_default(&config, 5U);
+    config.length_m = LENGTH_M;
+    config.spacing = NODE_SPACING_HEADWAY;
+    const node_config_t *cfg = &config;
+    const ref_road_t *road = &r->road;
+    const double node_l = node_fuel(cfg, road);
+    assert_int_equal(object_platoon_build(&pl, cfg, OBJECT_NOMINAL), 0);
+    for (int v = 0; v < VARIANTS; v++) {
+        memset(&o, 0xA5, sizeof o);
+        assert_int_equal(object_sim_init(&o, &pl, cfg->cruise, road, cfg->set_speed_m_s, cfg->initial_speed_m_s,
+                                         cfg->step_s), 0);
+        static const object_fuel_t how[VARIANTS] = {OBJECT_FUEL_AGGREGATE, OBJECT_FUEL_POSITIONS, OBJECT_FUEL_FOLLOWERS,
+                                                    OBJECT_FUEL_FOLLOWERS, OBJECT_FUEL_FOLLOWERS_LIMITED};
+        if (v != 3) {
+            object_sim_policy_drag(&o, cfg);
+        }
+        object_sim_position_fuel(&o, cfg, how[v]);
+        assert_int_equal(object_sim_run(&o, &object), 0);
+        out_pct[v] = pct(object.fuel_l, node_l);
+    }
+    node_road_free(r);
+}
+
+static const char *const k_variant[VARIANTS] = {"policy drag, one clipped sum", "policy drag, each position clipped",
+                                                "policy drag, followers where the policy puts them",
+                                                "followers, eq. 4.7 drag in the dynamics",
+                                                "policy drag, followers within their limits"};
+
+static void test_per_position_fuel_on_the_bundled_roads(void **state)
+{
+    (void)state;
+    static const char *const names[] = {"flat", "uphill", "hilly"};
+    /* measured, each with 0.03 % to spare: [road][variant] */
+    static const double limit_pct[3][VARIANTS] = {
+        {0.03, 0.03, 0.03, 0.03, 0.03}, {0.11, 0.11, 0.08, 0.27, 0.05}, {0.74, 0.76, 0.55, 0.49, 0.87}};
+    for (size_t k = 0U; k < 3U; k++) {
+        node_road_t road;
+        load_bundled(names[k], &road);
+        double e[VARIANTS];
+        per_position(&road, e);
+        for (int v = 0; v < VARIANTS; v++) {
+            print_message("%-6s 16.5 m, headway, %-50s: object %+.3f %% of node\n", names[k], k_variant[v], e[v]);
+        }
+        for (int v = 0; v < VARIANTS; v++) {
+            assert_abs_within(e[v], limit_pct[k][v]);
+        }
+    }
+}
+
+static void test_per_position_fuel_on_random_routes(void **state)
+{
+    (void)state;
+    double worst[VARIANTS] = {0.0}, sum_abs[VARIANTS] = {0.0};
+    unsigned within[VARIANTS] = {0U};
+    uint64_t worst_seed[VARIANTS] = {0U};
+    for (uint64_t seed = 1U; seed <= ROUTES; seed++) {
+        node_road_t r;
+        load_route(seed, &r);
+        double e[VARIANTS];
+        per_position(&r, e);
+        for (int v = 0; v < VARIANTS; v++) {
+            sum_abs[v] += fabs(e[v]);
+            within[v] += (fabs(e[v]) <= 0.3) ? 1U : 0U;
+            if (fabs(e[v]) > fabs(worst[v])) {
+                worst[v] = e[v];
+                worst_seed[v] = seed;
+            }
+        }
+    }
+    for (int v = 0; v < VARIANTS; v++) {
+        print_message("%u routes, 16.5 m, headway, %-50s: within 0.3 %% on %u, mean |difference| %.3f %%, "
+                      "worst %+.3f %% (seed %" PRIu64 ")\n",
+                      ROUTES, k_variant[v], within[v], sum_abs[v] / ROUTES, worst[v], worst_seed[v]);
+    }
+    /* measured: [mean |difference| in thousandths of a percent, worst, routes within 0.3 %] */
+    static const long mean_limit[VARIANTS] = {420, 420, 340, 370, 200};
+    static const double worst_limit[VARIANTS] = {1.80, 1.80, 1.50, 1.58, 0.87};
+    static const unsigned within_least[VARIANTS] = {115U, 115U, 140U, 129U, 200U};
+    for (int v = 0; v < VARIANTS; v++) {
+        assert_in_range(lround(1000.0 * sum_abs[v] / ROUTES), 0, mean_limit[v]);
+        assert_abs_within(worst[v], worst_limit[v]);
+        assert_in_range(within[v], within_least[v], ROUTES);
+    }
+}
+
 int main(int argc, char **argv)
 {
     g_roads_dir = (argc > 1) ? argv[1] : getenv("PFE_ROADS_DIR");
@@ -265,6 +392,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_headway_is_the_gap_policy_for_point_masses),
         cmocka_unit_test(test_bundled_roads_with_trucks_of_length),
         cmocka_unit_test(test_random_routes_with_trucks_of_length),
+        cmocka_unit_test(test_per_position_fuel_on_the_bundled_roads),
+        cmocka_unit_test(test_per_position_fuel_on_random_routes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
