@@ -27,7 +27,12 @@ HOST_CFLAGS := $(WARN) $(HOST_INC) -O2 -g
 SAN_CFLAGS := $(WARN) $(HOST_INC) -O1 -g $(SAN)
 STATIC_CFLAGS := $(WARN) $(HOST_INC) -O2
 
-FW_SRC := $(sort $(wildcard firmware/*.c))
+# The codec's tables and the ECU's receive filters are generated from the
+# DBC (sim_host/tools/dbc2c.c) and compiled into every firmware build.
+GEN := $(BUILD)/gen
+DBC := can_dbc/pfe.dbc
+FW_GEN_SRC := $(GEN)/pfe_dbc.c
+FW_SRC := $(sort $(wildcard firmware/*.c)) $(FW_GEN_SRC)
 FW_HDR := $(sort $(wildcard firmware/*.h))
 REF_SRC := sim_host/ref/ref_model.c sim_host/ref/sim_compare.c sim_host/lib/road_csv.c sim_host/ref/drive_trace.c
 SIM_HDR := $(sort $(wildcard sim_host/*/*.h sim_host/*/*/*.h))
@@ -82,7 +87,16 @@ HAL_HDR := $(sort $(wildcard hal/*.h hal/*/*.h))
 # sources it runs on; sim_host/lib, sim_host/ref and the firmware come from
 # the archives (mk/host.mk).
 TOOL_NAMES := $(sort $(notdir $(basename $(wildcard sim_host/tools/*.c))))
-$(foreach t,$(filter-out pfe_ecu pfe_ecu_replay pfe_faults pfe_replay,$(TOOL_NAMES)),$(call host_program,$(t)))
+$(foreach t,$(filter-out dbc2c pfe_ecu pfe_ecu_replay pfe_faults pfe_replay,$(TOOL_NAMES)),$(call host_program,$(t)))
+# dbc2c writes the tables the firmware archive compiles, so it is linked
+# from its own sources alone (the DBC reader), never from the archives.
+$(HOST)/dbc2c: sim_host/tools/dbc2c.c sim_host/lib/dbc.c sim_host/lib/dbc.h sim_host/lib/cli_help.h | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(HOST_CC) $(HOST_CFLAGS) -Wno-maybe-uninitialized -o $@ sim_host/tools/dbc2c.c sim_host/lib/dbc.c -lm
+.SECONDARY: $(FW_GEN_SRC)
+$(FW_GEN_SRC): $(DBC) $(HOST)/dbc2c
+	@mkdir -p $(@D)
+	$(HOST)/dbc2c $(DBC) $@
 $(call host_program,pfe_ecu,sim_host/tools/pfe_ecu.c $(ECU_HOST_HAL))
 $(call host_program,pfe_ecu_replay,sim_host/tools/pfe_ecu_replay.c $(ECU_REPLAY_SRC))
 $(call host_program,pfe_faults,sim_host/tools/pfe_faults.c $(HAL_REPLAY_SRC))
@@ -164,7 +178,6 @@ M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
 include mk/stm32.mk
 
-GEN := $(BUILD)/gen
 .SECONDARY: $(GEN)/road_hilly.c
 $(GEN)/road_%.c: $(ROADS)/%.csv $(HOST)/road2c
 	@mkdir -p $(@D)

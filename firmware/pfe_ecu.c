@@ -29,21 +29,9 @@ static const uint32_t k_out_pgn[OUT_COUNT] = {
     PFE_PGN_LFE1,     PFE_PGN_PLATOON_FUEL, PFE_PGN_HRLFC,        PFE_PGN_FUEL_PREDICTION,
     PFE_PGN_STATUS,   PFE_PGN_OWN_FUEL,     PFE_PGN_INPUT_STATUS, PFE_PGN_DEVICE_STATUS};
 
-#define PDU2_MASK (PFE_CAN_EFF_FLAG | 0x03FFFF00UL) /* EDP, DP, PF, PS */
-#define PDU1_MASK (PFE_CAN_EFF_FLAG | 0x03FF0000UL) /* EDP, DP, PF: any destination */
-
-const pfe_ecu_filter_t pfe_ecu_rx_filters[PFE_ECU_RX_FILTERS] = {
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_CCVS1 << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_SSI << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_PLATOON_CONFIG << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_GRADE_PREVIEW << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_REQUEST << 8), PDU1_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_ADDRESS_CLAIMED << 8), PDU1_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_VDS << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_CVW << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_LFE1 << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_HRLFC << 8), PDU2_MASK},
-};
+/* pfe_ecu_rx_filters[] is written from can_dbc/pfe.dbc at build time by
+ * sim_host/tools/dbc2c.c (build/gen/pfe_dbc.c): one filter per message whose
+ * PFEReceivedFrom is AnySourceAddress. */
 
 static void count_up(uint32_t *c, uint32_t n)
 {
