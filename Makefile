@@ -43,7 +43,7 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all tools deps run test test-host test-m4 firmware bench bench-figures test-bench-check help clean test-image \
+.PHONY: all tools deps run test test-host test-codec-gen test-m4 firmware bench bench-figures test-bench-check help clean test-image \
         test-selfcheck test-replay-m4 test-e2e test-bus-faults test-asserts
 .DEFAULT_GOAL := all
 
@@ -90,9 +90,13 @@ TOOL_NAMES := $(sort $(notdir $(basename $(wildcard sim_host/tools/*.c))))
 $(foreach t,$(filter-out dbc2c pfe_ecu pfe_ecu_replay pfe_faults pfe_replay,$(TOOL_NAMES)),$(call host_program,$(t)))
 # dbc2c writes the tables the firmware archive compiles, so it is linked
 # from its own sources alone (the DBC reader), never from the archives.
-$(HOST)/dbc2c: sim_host/tools/dbc2c.c sim_host/lib/dbc.c sim_host/lib/dbc.h sim_host/lib/cli_help.h | $(DEPS_STAMP)
-	@mkdir -p $(@D)
-	$(HOST_CC) $(HOST_CFLAGS) -Wno-maybe-uninitialized -o $@ sim_host/tools/dbc2c.c sim_host/lib/dbc.c -lm
+DBC2C_SRC := sim_host/tools/dbc2c.c sim_host/lib/dbc.c
+define dbc2c__rule
+$(host__dir_$(1))/dbc2c: $(DBC2C_SRC) sim_host/lib/dbc.h sim_host/lib/cli_help.h | $(DEPS_STAMP)
+	@mkdir -p $$(@D)
+	$$(HOST_CC) $$(host__cflags_$(1)) $(host__ldflags_$(1)) -Wno-maybe-uninitialized -o $$@ $(DBC2C_SRC) -lm
+endef
+$(foreach f,$(HOST_FLAVOURS),$(eval $(call dbc2c__rule,$(f))))
 .SECONDARY: $(FW_GEN_SRC)
 $(FW_GEN_SRC): $(DBC) $(HOST)/dbc2c
 	@mkdir -p $(@D)
@@ -155,6 +159,11 @@ test-host: $(HOST_TEST_BINS) test-asserts
 	@echo "== host: HAL conformance on hal/fake"; $(HOSTSAN)/test_hal_fake
 	@echo "== host: HAL conformance on hal/replay"; $(HOSTSAN)/test_hal_replay
 	@echo "== host: the ECU loop on hal/fake"; $(HOSTSAN)/test_ecu_loop
+
+## the codec generated from the DBC: a changed copy (scale, period, unit) changes the firmware built over it alone; the unchanged DBC gives the build's tables; dbc2c's refusals
+test-codec-gen: $(HOST)/dbc2c $(FW_GEN_SRC)
+	@echo "== host: the codec generated from $(DBC), and from a changed copy"
+	@CC="$(HOST_CC)" CFLAGS="$(HOST_CFLAGS)" sh tests/codec_gen/codec_gen_test.sh $(HOST)/dbc2c $(DBC) $(FW_GEN_SRC) $(BUILD)/codec-gen
 
 # ---------------------------------------------------------------- Cortex-M4 (QEMU mps2-an386)
 
@@ -291,7 +300,7 @@ test: test-host test-m4 test-selfcheck test-replay-m4 test-image test-m4-selftes
       test-sensitivity test-run-host test-drive-logs test-record-vm test-replay test-replay-vcan \
       test-thesis test-hardening test-bus-faults test-fuzz-smoke test-bench-check test-truck-cal \
       test-foreign-trucks test-replay-calib test-stm32 test-road-import \
-      test-nvm-faults test-san
+      test-nvm-faults test-san test-codec-gen
 
 ## the bench checker against made-up figures (tests/bench/bench_check_test.sh)
 test-bench-check:

@@ -229,7 +229,7 @@ static pfe_sig_state_t get_raw(const pfe_can_frame_t *frame, pfe_sig_index_t i, 
  * each call the signal is a constant entry of pfe_codec_signals[], so the
  * branches fold: a count is the raw value itself, a scale whose products
  * stay below 2^32 (speed, angles, grades) takes 32-bit arithmetic, a larger
- * one (fuel rate) a 64-bit product and pfe_udiv_u64(). */
+ * one (fuel rate) a 64-bit product and division. */
 static ALWAYS_INLINE int64_t fw_of_raw(const pfe_codec_signal_t *sig, uint32_t raw)
 {
     const uint32_t num = (uint32_t)sig->fw_num;
@@ -240,7 +240,7 @@ static ALWAYS_INLINE int64_t fw_of_raw(const pfe_codec_signal_t *sig, uint32_t r
     } else if ((((uint64_t)sig->raw_max * num) + (den / 2U)) <= UINT32_MAX) {
         v = ((raw * num) + (den / 2U)) / den;
     } else {
-        v = pfe_udiv_u64(((uint64_t)raw * num) + (den / 2U), den, NULL);
+        v = (((uint64_t)raw * num) + (den / 2U)) / den;
     }
     return (int64_t)v + sig->fw_offset; /* dbc2c: the result fits the field's type */
 }

@@ -6,9 +6,6 @@
 
 #include "pfe_fixed.h"
 
-#define CONFIG_PERIOD_US 1000000U  /* PFE_PlatoonConfig */
-#define TICKS_PER_100MS 10U
-#define TICKS_PER_1S 100U
 #define ARBITRARY_FIRST 128U       /* J1939 self-configurable address range */
 #define ARBITRARY_LAST 247U
 
@@ -25,9 +22,25 @@ enum {
     OUT_COUNT
 };
 
-static const uint32_t k_out_pgn[OUT_COUNT] = {
-    PFE_PGN_LFE1,     PFE_PGN_PLATOON_FUEL, PFE_PGN_HRLFC,        PFE_PGN_FUEL_PREDICTION,
-    PFE_PGN_STATUS,   PFE_PGN_OWN_FUEL,     PFE_PGN_INPUT_STATUS, PFE_PGN_DEVICE_STATUS};
+/* Each output's message; its PGN and period are the DBC's (pfe_codec_messages[]). */
+static const pfe_msg_index_t k_out_msg[OUT_COUNT] = {
+    PFE_MSG_LFE1,   PFE_MSG_PLATOON_FUEL, PFE_MSG_HRLFC,        PFE_MSG_FUEL_PREDICTION,
+    PFE_MSG_STATUS, PFE_MSG_OWN_FUEL,     PFE_MSG_INPUT_STATUS, PFE_MSG_DEVICE_STATUS};
+
+/* A message's period (GenMsgCycleTime) in us; 0 for one sent on event or request. */
+static uint32_t period_us(pfe_msg_index_t msg)
+{
+    return (uint32_t)pfe_codec_messages[msg].cycle_ms * 1000U;
+}
+
+/* Whether an output is due at this tick: every GenMsgCycleTime, in the
+ * phase-th tick of its period (the outputs are spread over ticks); never
+ * for a message without a period (sent on request only). */
+static bool out_due(uint32_t tick, uint32_t out, uint32_t phase)
+{
+    const uint32_t ticks = period_us(k_out_msg[out]) / PFE_ECU_TICK_US;
+    return (ticks != 0U) && ((tick % ticks) == (phase % ticks));
+}
 
 /* pfe_ecu_rx_filters[] is written from can_dbc/pfe.dbc at build time by
  * sim_host/tools/dbc2c.c (build/gen/pfe_dbc.c): one filter per message whose
@@ -385,7 +398,7 @@ static void on_request(pfe_ecu_t *ecu, const pfe_can_frame_t *f)
         return;
     }
     for (uint32_t k = 0U; k < OUT_COUNT; k++) {
-        if (req.pgn.value == k_out_pgn[k]) {
+        if (req.pgn.value == pfe_codec_messages[k_out_msg[k]].pgn) {
             ecu->request_pending |= 1U << k;
             count_up(&ecu->count.requests_answered, 1U);
         }
@@ -925,7 +938,7 @@ static void age_inputs(pfe_ecu_t *ecu, uint64_t now_us)
             pfe_altgrade_reset(&ecu->altgrade);
         }
     }
-    age(&ecu->config, now_us, CONFIG_PERIOD_US);
+    age(&ecu->config, now_us, period_us(PFE_MSG_PLATOON_CONFIG));
     if ((ecu->config.state != PFE_SIG_VALID) && !ecu->degraded) {
         /* Keep the last platoon; say that it is no longer confirmed. */
         ecu->degraded = true;
@@ -992,21 +1005,20 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
     }
     if (ecu->addr_state == PFE_ECU_ADDR_CLAIMED) {
         /* Schedule (can_dbc/pfe.dbc GenMsgCycleTime), spread over ticks. */
-        const uint32_t t100 = ecu->tick % TICKS_PER_100MS;
-        const uint32_t t1s = ecu->tick % TICKS_PER_1S;
+        const uint32_t t = ecu->tick;
         uint32_t due = ecu->request_pending;
-        due |= (t100 == 0U) ? (1U << (uint32_t)OUT_LFE1) : 0U;
-        due |= (t100 == 1U) ? (1U << (uint32_t)OUT_PLATOON_FUEL) : 0U;
-        due |= (t1s == 2U) ? (1U << (uint32_t)OUT_HRLFC) : 0U;
-        due |= (t1s == 3U) ? (1U << (uint32_t)OUT_PREDICTION) : 0U;
-        due |= (t1s == 4U) ? (1U << (uint32_t)OUT_STATUS) : 0U;
-        due |= (t100 == 2U) ? (1U << (uint32_t)OUT_OWN_FUEL) : 0U;
-        due |= (t1s == 5U) ? (1U << (uint32_t)OUT_INPUT_STATUS) : 0U;
-        due |= (t1s == 6U) ? (1U << (uint32_t)OUT_DEVICE_STATUS) : 0U;
-        if (!j1939_fuel_due(ecu, ecu->other_lfe1_seen, ecu->other_lfe1_us, 100000U)) {
+        due |= out_due(t, OUT_LFE1, 0U) ? (1U << (uint32_t)OUT_LFE1) : 0U;
+        due |= out_due(t, OUT_PLATOON_FUEL, 1U) ? (1U << (uint32_t)OUT_PLATOON_FUEL) : 0U;
+        due |= out_due(t, OUT_HRLFC, 2U) ? (1U << (uint32_t)OUT_HRLFC) : 0U;
+        due |= out_due(t, OUT_PREDICTION, 3U) ? (1U << (uint32_t)OUT_PREDICTION) : 0U;
+        due |= out_due(t, OUT_STATUS, 4U) ? (1U << (uint32_t)OUT_STATUS) : 0U;
+        due |= out_due(t, OUT_OWN_FUEL, 2U) ? (1U << (uint32_t)OUT_OWN_FUEL) : 0U;
+        due |= out_due(t, OUT_INPUT_STATUS, 5U) ? (1U << (uint32_t)OUT_INPUT_STATUS) : 0U;
+        due |= out_due(t, OUT_DEVICE_STATUS, 6U) ? (1U << (uint32_t)OUT_DEVICE_STATUS) : 0U;
+        if (!j1939_fuel_due(ecu, ecu->other_lfe1_seen, ecu->other_lfe1_us, period_us(PFE_MSG_LFE1))) {
             due &= ~(1U << (uint32_t)OUT_LFE1);
         }
-        if (!j1939_fuel_due(ecu, ecu->other_hrlfc_seen, ecu->other_hrlfc_us, 1000000U)) {
+        if (!j1939_fuel_due(ecu, ecu->other_hrlfc_seen, ecu->other_hrlfc_us, period_us(PFE_MSG_HRLFC))) {
             due &= ~(1U << (uint32_t)OUT_HRLFC);
         }
         for (uint32_t k = 0U; k < OUT_COUNT; k++) {
