@@ -22,10 +22,15 @@ enum {
     OUT_COUNT
 };
 
-/* Each output's message; its PGN and period are the DBC's (pfe_codec_messages[]). */
+/* Each output's message, with its period from the DBC (pfe_codec_messages[]),
+ * and its PGN for requests: the PGN macros, which the generated tables hold
+ * equal to the DBC's when they compile (sim_host/tools/dbc2c.c). */
 static const pfe_msg_index_t k_out_msg[OUT_COUNT] = {
     PFE_MSG_LFE1,   PFE_MSG_PLATOON_FUEL, PFE_MSG_HRLFC,        PFE_MSG_FUEL_PREDICTION,
     PFE_MSG_STATUS, PFE_MSG_OWN_FUEL,     PFE_MSG_INPUT_STATUS, PFE_MSG_DEVICE_STATUS};
+static const uint32_t k_out_pgn[OUT_COUNT] = {
+    PFE_PGN_LFE1,     PFE_PGN_PLATOON_FUEL, PFE_PGN_HRLFC,        PFE_PGN_FUEL_PREDICTION,
+    PFE_PGN_STATUS,   PFE_PGN_OWN_FUEL,     PFE_PGN_INPUT_STATUS, PFE_PGN_DEVICE_STATUS};
 
 /* A message's period (GenMsgCycleTime) in us; 0 for one sent on event or request. */
 static uint32_t period_us(pfe_msg_index_t msg)
@@ -398,7 +403,7 @@ static void on_request(pfe_ecu_t *ecu, const pfe_can_frame_t *f)
         return;
     }
     for (uint32_t k = 0U; k < OUT_COUNT; k++) {
-        if (req.pgn.value == pfe_codec_messages[k_out_msg[k]].pgn) {
+        if (req.pgn.value == k_out_pgn[k]) {
             ecu->request_pending |= 1U << k;
             count_up(&ecu->count.requests_answered, 1U);
         }
