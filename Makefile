@@ -90,9 +90,9 @@ TOOL_NAMES := $(sort $(notdir $(basename $(wildcard sim_host/tools/*.c))))
 $(foreach t,$(filter-out dbc2c pfe_ecu pfe_ecu_replay pfe_faults pfe_replay,$(TOOL_NAMES)),$(call host_program,$(t)))
 # dbc2c writes the tables the firmware archive compiles, so it is linked
 # from its own sources alone (the DBC reader), never from the archives.
-DBC2C_SRC := sim_host/tools/dbc2c.c sim_host/lib/dbc.c
+DBC2C_SRC := sim_host/tools/dbc2c.c sim_host/lib/dbc.c sim_host/lib/out_file.c
 define dbc2c__rule
-$(host__dir_$(1))/dbc2c: $(DBC2C_SRC) sim_host/lib/dbc.h sim_host/lib/cli_help.h | $(DEPS_STAMP)
+$(host__dir_$(1))/dbc2c: $(DBC2C_SRC) sim_host/lib/dbc.h sim_host/lib/cli_help.h sim_host/lib/out_file.h | $(DEPS_STAMP)
 	@mkdir -p $$(@D)
 	$$(HOST_CC) $$(host__cflags_$(1)) $(host__ldflags_$(1)) -Wno-maybe-uninitialized -o $$@ $(DBC2C_SRC) -lm
 endef

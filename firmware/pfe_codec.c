@@ -234,13 +234,16 @@ static ALWAYS_INLINE int64_t fw_of_raw(const pfe_codec_signal_t *sig, uint32_t r
 {
     const uint32_t num = (uint32_t)sig->fw_num;
     const uint32_t den = (uint32_t)sig->fw_den;
+    const uint64_t num64 = num;
+    const uint64_t den64 = den;
     uint64_t v;
     if (den == 1U) {
-        v = (num == 1U) ? (uint64_t)raw : ((uint64_t)raw * num);
-    } else if ((((uint64_t)sig->raw_max * num) + (den / 2U)) <= UINT32_MAX) {
-        v = ((raw * num) + (den / 2U)) / den;
+        v = (num == 1U) ? (uint64_t)raw : ((uint64_t)raw * num64);
+    } else if ((((uint64_t)sig->raw_max * num64) + (den64 / 2U)) <= UINT32_MAX) {
+        const uint32_t q = ((raw * num) + (den / 2U)) / den;
+        v = q;
     } else {
-        v = (((uint64_t)raw * num) + (den / 2U)) / den;
+        v = (((uint64_t)raw * num64) + (den64 / 2U)) / den64;
     }
     return (int64_t)v + sig->fw_offset; /* dbc2c: the result fits the field's type */
 }

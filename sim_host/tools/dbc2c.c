@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "lib/cli_help.h"
+#include "lib/out_file.h"
 
 /* The manual: --help prints it whole, a usage error its first lines. */
 static const char k_manual[] =
@@ -549,8 +550,18 @@ static void put_signal_comment(FILE *f, const sig_out_t *o)
             o->dbc->unit, o->dbc->offset_text, o->dbc->min_text, o->dbc->max_text);
 }
 
-static int write_source(FILE *f, const char *dbc_path, const msg_out_t *msgs, const sig_out_t *sigs)
+typedef struct {
+    const char *dbc_path;
+    const msg_out_t *msgs;
+    const sig_out_t *sigs;
+} tables_t;
+
+static int write_source(FILE *f, const void *ctx)
 {
+    const tables_t *t = ctx;
+    const char *dbc_path = t->dbc_path;
+    const msg_out_t *msgs = t->msgs;
+    const sig_out_t *sigs = t->sigs;
     fprintf(f,
             "/*\n"
             " * The codec's tables and the ECU's receive filters, written by dbc2c from\n"
@@ -679,29 +690,8 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    const size_t len = strlen(out_path);
-    char *tmp_path = malloc(len + sizeof ".tmp");
-    rc = 1;
-    if (tmp_path == NULL) {
-        fprintf(stderr, "dbc2c: out of memory\n");
-    } else {
-        memcpy(tmp_path, out_path, len);
-        memcpy(tmp_path + len, ".tmp", sizeof ".tmp");
-        FILE *out = fopen(tmp_path, "wb");
-        if (out == NULL) {
-            perror(tmp_path);
-        } else {
-            int bad = write_source(out, g_dbc_path, msgs, sigs) != 0;
-            bad |= fclose(out) != 0;
-            if (bad || rename(tmp_path, out_path) != 0) {
-                fprintf(stderr, "dbc2c: cannot write %s\n", out_path);
-                (void)remove(tmp_path);
-            } else {
-                rc = 0;
-            }
-        }
-        free(tmp_path);
-    }
+    const tables_t tables = {g_dbc_path, msgs, sigs};
+    rc = (out_file_write(out_path, "dbc2c", write_source, &tables) == 0) ? 0 : 1;
     dbc_free(dbc);
     return rc;
 }

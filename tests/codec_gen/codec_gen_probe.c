@@ -10,6 +10,13 @@
  *
  * One "key value" line each; exit status 1 if the codec or ECU refused a call.
  */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
 #include <inttypes.h>
 #include <stdio.h>
 #include <string.h>
@@ -19,35 +26,22 @@
 #include "pfe_codec.h"
 #include "pfe_ecu.h"
 
-static pfe_ecu_t g_ecu;
+#include "../unit/ecu_harness.h" /* the ECU tests' module: config(), g_ecu */
 
 static int status_frames(uint32_t *frames)
 {
-    const pfe_ecu_config_t c = {
-        .preferred_address = PFE_ECU_DEFAULT_ADDRESS,
-        .name = 0x80A0000012345678ULL,
-        .save_interval_ms = 1000U,
-        .vehicle = &pfe_default_vehicle,
-        .env = &pfe_default_env,
-        .drag = &pfe_default_drag,
-        .default_vehicles = 1U,
-        .default_position = 0U,
-        .default_gap_mm = 10000U,
-        .cruise = &pfe_default_cruise,
-        .default_set_speed_mm_s = 25000,
-    };
+    const pfe_ecu_config_t c = config();
     uint64_t now_us = 1000000U;
     if (pfe_ecu_init(&g_ecu, &c, NULL, -1, now_us) != PFE_OK) {
         return -1;
     }
-    static pfe_can_frame_t tx[PFE_ECU_TX_MAX];
     *frames = 0U;
     /* 300 ms to claim the address (250 ms), then 1000 ticks: 10 s */
     for (uint32_t k = 0U; k < 1030U; k++) {
-        const uint32_t n = pfe_ecu_tick(&g_ecu, now_us, tx, PFE_ECU_TX_MAX);
+        g_ntx = pfe_ecu_tick(&g_ecu, now_us, g_tx, PFE_ECU_TX_MAX);
         now_us += PFE_ECU_TICK_US;
-        for (uint32_t i = 0U; (i < n) && (k >= 30U); i++) {
-            *frames += (pfe_j1939_pgn(tx[i].id) == PFE_PGN_STATUS) ? 1U : 0U;
+        for (uint32_t i = 0U; (i < g_ntx) && (k >= 30U); i++) {
+            *frames += (pfe_j1939_pgn(g_tx[i].id) == PFE_PGN_STATUS) ? 1U : 0U;
         }
     }
     return 0;
