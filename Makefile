@@ -27,7 +27,12 @@ HOST_CFLAGS := $(WARN) $(HOST_INC) -O2 -g
 SAN_CFLAGS := $(WARN) $(HOST_INC) -O1 -g $(SAN)
 STATIC_CFLAGS := $(WARN) $(HOST_INC) -O2
 
-FW_SRC := $(sort $(wildcard firmware/*.c))
+# The codec's tables and the ECU's receive filters are generated from the
+# DBC (sim_host/tools/dbc2c.c) and compiled into every firmware build.
+GEN := $(BUILD)/gen
+DBC := can_dbc/pfe.dbc
+FW_GEN_SRC := $(GEN)/pfe_dbc.c
+FW_SRC := $(sort $(wildcard firmware/*.c)) $(FW_GEN_SRC)
 FW_HDR := $(sort $(wildcard firmware/*.h))
 REF_SRC := sim_host/ref/ref_model.c sim_host/ref/sim_compare.c sim_host/lib/road_csv.c sim_host/ref/drive_trace.c
 SIM_HDR := $(sort $(wildcard sim_host/*/*.h sim_host/*/*/*.h))
@@ -38,7 +43,7 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all tools deps run test test-host test-m4 firmware bench bench-figures test-bench-check help clean test-image \
+.PHONY: all tools deps run test test-host test-codec-gen test-m4 firmware bench bench-figures test-bench-check help clean test-image \
         test-selfcheck test-replay-m4 test-e2e test-bus-faults test-asserts
 .DEFAULT_GOAL := all
 
@@ -82,7 +87,20 @@ HAL_HDR := $(sort $(wildcard hal/*.h hal/*/*.h))
 # sources it runs on; sim_host/lib, sim_host/ref and the firmware come from
 # the archives (mk/host.mk).
 TOOL_NAMES := $(sort $(notdir $(basename $(wildcard sim_host/tools/*.c))))
-$(foreach t,$(filter-out pfe_ecu pfe_ecu_replay pfe_faults pfe_replay,$(TOOL_NAMES)),$(call host_program,$(t)))
+$(foreach t,$(filter-out dbc2c pfe_ecu pfe_ecu_replay pfe_faults pfe_replay,$(TOOL_NAMES)),$(call host_program,$(t)))
+# dbc2c writes the tables the firmware archive compiles, so it is linked
+# from its own sources alone (the DBC reader), never from the archives.
+DBC2C_SRC := sim_host/tools/dbc2c.c sim_host/lib/dbc.c sim_host/lib/out_file.c
+define dbc2c__rule
+$(host__dir_$(1))/dbc2c: $(DBC2C_SRC) sim_host/lib/dbc.h sim_host/lib/cli_help.h sim_host/lib/out_file.h | $(DEPS_STAMP)
+	@mkdir -p $$(@D)
+	$$(HOST_CC) $$(host__cflags_$(1)) $(host__ldflags_$(1)) -Wno-maybe-uninitialized -o $$@ $(DBC2C_SRC) -lm
+endef
+$(foreach f,$(HOST_FLAVOURS),$(eval $(call dbc2c__rule,$(f))))
+.SECONDARY: $(FW_GEN_SRC)
+$(FW_GEN_SRC): $(DBC) $(HOST)/dbc2c
+	@mkdir -p $(@D)
+	$(HOST)/dbc2c $(DBC) $@
 $(call host_program,pfe_ecu,sim_host/tools/pfe_ecu.c $(ECU_HOST_HAL))
 $(call host_program,pfe_ecu_replay,sim_host/tools/pfe_ecu_replay.c $(ECU_REPLAY_SRC))
 $(call host_program,pfe_faults,sim_host/tools/pfe_faults.c $(HAL_REPLAY_SRC))
@@ -144,6 +162,11 @@ test-host: $(HOST_TEST_BINS) test-asserts
 	@echo "== host: the ECU loop on hal/fake"; $(HOSTSAN)/test_ecu_loop
 	@echo "== host: the tools' option tables"; $(HOSTSAN)/test_cli_args
 
+## the codec generated from the DBC: a changed copy (scale, period, unit) changes the firmware built over it alone; the unchanged DBC gives the build's tables; dbc2c's refusals
+test-codec-gen: $(HOST)/dbc2c $(FW_GEN_SRC)
+	@echo "== host: the codec generated from $(DBC), and from a changed copy"
+	@CC="$(HOST_CC)" CFLAGS="$(HOST_CFLAGS)" sh tests/codec_gen/codec_gen_test.sh $(HOST)/dbc2c $(DBC) $(FW_GEN_SRC) $(BUILD)/codec-gen
+
 # ---------------------------------------------------------------- Cortex-M4 (QEMU mps2-an386)
 
 include mk/m4.mk
@@ -166,7 +189,6 @@ M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
 include mk/stm32.mk
 
-GEN := $(BUILD)/gen
 .SECONDARY: $(GEN)/road_hilly.c
 $(GEN)/road_%.c: $(ROADS)/%.csv $(HOST)/road2c
 	@mkdir -p $(@D)
@@ -280,7 +302,7 @@ test: test-host test-m4 test-selfcheck test-replay-m4 test-image test-m4-selftes
       test-sensitivity test-run-host test-drive-logs test-record-vm test-replay test-replay-vcan \
       test-thesis test-hardening test-bus-faults test-fuzz-smoke test-bench-check test-truck-cal \
       test-foreign-trucks test-replay-calib test-stm32 test-road-import \
-      test-nvm-faults test-san
+      test-nvm-faults test-san test-codec-gen
 
 ## the bench checker against made-up figures (tests/bench/bench_check_test.sh)
 test-bench-check:

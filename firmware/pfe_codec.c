@@ -16,246 +16,8 @@
 
 /* ------------------------------------------------------------ tables */
 
-#define RX PFE_CODEC_DIR_RX
-#define TX PFE_CODEC_DIR_TX
-#define SA_IN 0x00U
-#define SA_OUT PFE_CODEC_DEFAULT_ADDRESS
-
-const pfe_codec_message_t pfe_codec_messages[PFE_MSG_COUNT] = {
-    [PFE_MSG_CCVS1] = {"CCVS1", PFE_PGN_CCVS1, 6U, SA_IN, 8U, RX, 100U,
-                       (uint8_t)PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED, 1U},
-    [PFE_MSG_SSI] = {"SSI", PFE_PGN_SSI, 3U, SA_IN, 8U, RX, 10U,
-                     (uint8_t)PFE_CSIG_SSI_PITCH_ANGLE, 3U},
-    [PFE_MSG_PLATOON_CONFIG] = {"PFE_PlatoonConfig", PFE_PGN_PLATOON_CONFIG, 6U, SA_IN, 8U, RX,
-                                1000U, (uint8_t)PFE_CSIG_PC_NUMBER_OF_VEHICLES, 5U},
-    [PFE_MSG_GRADE_PREVIEW] = {"PFE_GradePreview", PFE_PGN_GRADE_PREVIEW, 6U, SA_IN, 8U, RX, 0U,
-                               (uint8_t)PFE_CSIG_GP_FRAME_TYPE, 8U},
-    [PFE_MSG_LFE1] = {"LFE1", PFE_PGN_LFE1, 6U, SA_OUT, 8U, RX | TX, 100U,
-                      (uint8_t)PFE_CSIG_LFE1_ENGINE_FUEL_RATE, 1U},
-    [PFE_MSG_PLATOON_FUEL] = {"PFE_PlatoonFuel", PFE_PGN_PLATOON_FUEL, 6U, SA_OUT, 8U, TX, 100U,
-                              (uint8_t)PFE_CSIG_PF_PLATOON_FUEL_RATE, 2U},
-    [PFE_MSG_HRLFC] = {"HRLFC", PFE_PGN_HRLFC, 6U, SA_OUT, 8U, RX | TX, 1000U,
-                       (uint8_t)PFE_CSIG_HRLFC_TRIP_FUEL, 2U},
-    [PFE_MSG_FUEL_PREDICTION] = {"PFE_FuelPrediction", PFE_PGN_FUEL_PREDICTION, 6U, SA_OUT, 8U,
-                                 TX, 1000U, (uint8_t)PFE_CSIG_FP_PREDICTED_FUEL, 4U},
-    [PFE_MSG_STATUS] = {"PFE_Status", PFE_PGN_STATUS, 6U, SA_OUT, 8U, TX, 1000U,
-                        (uint8_t)PFE_CSIG_ST_SPEED_INPUT, 14U},
-    [PFE_MSG_ADDRESS_CLAIMED] = {"AddressClaimed", PFE_PGN_ADDRESS_CLAIMED, 6U, SA_OUT, 8U,
-                                 RX | TX, 0U, (uint8_t)PFE_CSIG_AC_IDENTITY_NUMBER, 10U},
-    [PFE_MSG_REQUEST] = {"Request", PFE_PGN_REQUEST, 6U, SA_IN, 3U, RX | TX, 0U,
-                         (uint8_t)PFE_CSIG_RQST_REQUESTED_PGN, 1U},
-    [PFE_MSG_VDS] = {"VDS", PFE_PGN_VDS, 6U, SA_IN, 8U, RX, 1000U,
-                     (uint8_t)PFE_CSIG_VDS_COMPASS_BEARING, 4U},
-    [PFE_MSG_CVW] = {"CVW", PFE_PGN_CVW, 6U, SA_IN, 8U, RX, 0U,
-                     (uint8_t)PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT, 2U},
-    [PFE_MSG_OWN_FUEL] = {"PFE_OwnFuel", PFE_PGN_OWN_FUEL, 6U, SA_OUT, 8U, TX, 100U,
-                          (uint8_t)PFE_CSIG_OF_OWN_FUEL_RATE, 3U},
-    [PFE_MSG_INPUT_STATUS] = {"PFE_InputStatus", PFE_PGN_INPUT_STATUS, 6U, SA_OUT, 8U, TX, 1000U,
-                              (uint8_t)PFE_CSIG_IS_SPEED_SOURCE, 9U},
-    [PFE_MSG_DEVICE_STATUS] = {"PFE_DeviceStatus", PFE_PGN_DEVICE_STATUS, 6U, SA_OUT, 8U, TX,
-                               1000U, (uint8_t)PFE_CSIG_DS_RX_FIFO_OVERRUNS, 10U},
-};
-
-#define NOMUX PFE_CODEC_MUX_NONE
-#define J1939 PFE_CODEC_RANGES_J1939
-#define PLAIN PFE_CODEC_RANGES_NONE
-/* message, PGN, signal, SPN, start, length, mux, ranges, scale, offset, raw min, raw max */
-#define SIG(...) SIG_(__VA_ARGS__) /* expands C_<message> into its name and PGN first */
-/* An image built with PFE_CODEC_NO_NAMES (the Cortex-M4 replay image,
- * whose flash budget is tight) keeps the table without the signals' names,
- * which only host tools and tests read. */
-#ifdef PFE_CODEC_NO_NAMES
-#define SIG_NAME(name) ""
-#else
-#define SIG_NAME(name) (name)
-#endif
-#define SIG_(msg, pgn, name, spn, start, len, mux, ranges, snum, sden, onum, oden, rmin, rmax) \
-    {msg, pgn, SIG_NAME(name), spn, start, len, PFE_CODEC_LITTLE_ENDIAN, false, mux, ranges, snum, sden, \
-     onum, oden, rmin, rmax}
-
-#define RAW16_MAX 0xFAFFU          /* J1939 2-byte valid area */
-#define RAW32_MAX 0xFAFFFFFFUL     /* J1939 4-byte valid area */
-#define C_CCVS1 "CCVS1", PFE_PGN_CCVS1
-#define C_SSI "SSI", PFE_PGN_SSI
-#define C_PC "PFE_PlatoonConfig", PFE_PGN_PLATOON_CONFIG
-#define C_GP "PFE_GradePreview", PFE_PGN_GRADE_PREVIEW
-#define C_LFE1 "LFE1", PFE_PGN_LFE1
-#define C_PF "PFE_PlatoonFuel", PFE_PGN_PLATOON_FUEL
-#define C_HRLFC "HRLFC", PFE_PGN_HRLFC
-#define C_FP "PFE_FuelPrediction", PFE_PGN_FUEL_PREDICTION
-#define C_ST "PFE_Status", PFE_PGN_STATUS
-#define C_AC "AddressClaimed", PFE_PGN_ADDRESS_CLAIMED
-#define C_RQ "Request", PFE_PGN_REQUEST
-#define C_VDS "VDS", PFE_PGN_VDS
-#define C_CVW "CVW", PFE_PGN_CVW
-#define C_OF "PFE_OwnFuel", PFE_PGN_OWN_FUEL
-#define C_IS "PFE_InputStatus", PFE_PGN_INPUT_STATUS
-#define C_DS "PFE_DeviceStatus", PFE_PGN_DEVICE_STATUS
-
-const pfe_codec_signal_t pfe_codec_signals[PFE_CODEC_SIGNAL_COUNT] = {
-    [PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED] =
-        SIG(C_CCVS1, "WheelBasedVehicleSpeed", 84U, 8U, 16U, NOMUX, J1939, 1, 256, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_SSI_PITCH_ANGLE] =
-        SIG(C_SSI, "PitchAngle", 3318U, 0U, 16U, NOMUX, J1939, 1, 500, -64, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_SSI_ROLL_ANGLE] =
-        SIG(C_SSI, "RollAngle", 3319U, 16U, 16U, NOMUX, J1939, 1, 500, -64, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_SSI_PITCH_ANGLE_FOM] =
-        SIG(C_SSI, "PitchAngleFigureOfMerit", 3323U, 48U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_PC_NUMBER_OF_VEHICLES] =
-        SIG(C_PC, "NumberOfVehicles", 0U, 0U, 8U, NOMUX, J1939, 1, 1, 0, 1, 1U, 32U),
-    [PFE_CSIG_PC_OWN_POSITION] =
-        SIG(C_PC, "OwnPosition", 0U, 8U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, 31U),
-    [PFE_CSIG_PC_GAP] =
-        SIG(C_PC, "Gap", 0U, 16U, 16U, NOMUX, J1939, 1, 100, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_PC_TIME_GAP] =
-        SIG(C_PC, "TimeGap", 0U, 32U, 16U, NOMUX, J1939, 1, 1000, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_PC_SET_SPEED] =
-        SIG(C_PC, "SetSpeed", 0U, 48U, 16U, NOMUX, J1939, 1, 256, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_GP_FRAME_TYPE] =
-        SIG(C_GP, "PreviewFrameType", 0U, 0U, 2U, PFE_CODEC_MUXER, PLAIN, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_GP_PREVIEW_ID] =
-        SIG(C_GP, "PreviewId", 0U, 2U, 4U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 15U),
-    [PFE_CSIG_GP_SAMPLE_COUNT] =
-        SIG(C_GP, "SampleCount", 0U, 8U, 16U, 0, J1939, 1, 1, 0, 1, 1U, PFE_PREVIEW_MAX_SAMPLES),
-    [PFE_CSIG_GP_SAMPLE_SPACING] =
-        SIG(C_GP, "SampleSpacing", 0U, 24U, 8U, 0, J1939, 1, 1, 0, 1, 1U, 250U),
-    [PFE_CSIG_GP_SAMPLE_INDEX] =
-        SIG(C_GP, "SampleIndex", 0U, 6U, 10U, 1, PLAIN, 1, 1, 0, 1, 0U, PFE_PREVIEW_MAX_SAMPLES - 1U),
-    [PFE_CSIG_GP_GRADE_SAMPLE0] =
-        SIG(C_GP, "GradeSample0", 0U, 16U, 16U, 1, J1939, 1, 500, -64, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_GP_GRADE_SAMPLE1] =
-        SIG(C_GP, "GradeSample1", 0U, 32U, 16U, 1, J1939, 1, 500, -64, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_GP_GRADE_SAMPLE2] =
-        SIG(C_GP, "GradeSample2", 0U, 48U, 16U, 1, J1939, 1, 500, -64, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_LFE1_ENGINE_FUEL_RATE] =
-        SIG(C_LFE1, "EngineFuelRate", 183U, 0U, 16U, NOMUX, J1939, 1, 20, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_PF_PLATOON_FUEL_RATE] =
-        SIG(C_PF, "PlatoonFuelRate", 0U, 0U, 16U, NOMUX, J1939, 1, 20, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_PF_PLATOON_TOTAL_FUEL_USED] =
-        SIG(C_PF, "PlatoonTotalFuelUsed", 0U, 16U, 32U, NOMUX, J1939, 1, 1000, 0, 1, 0U, RAW32_MAX),
-    [PFE_CSIG_HRLFC_TRIP_FUEL] =
-        SIG(C_HRLFC, "HighResolutionEngineTripFuel", 5053U, 0U, 32U, NOMUX, J1939, 1, 1000, 0, 1, 0U,
-            RAW32_MAX),
-    [PFE_CSIG_HRLFC_TOTAL_FUEL_USED] =
-        SIG(C_HRLFC, "HighResolutionEngineTotalFuelUsed", 5054U, 32U, 32U, NOMUX, J1939, 1, 1000, 0,
-            1, 0U, RAW32_MAX),
-    [PFE_CSIG_FP_PREDICTED_FUEL] =
-        SIG(C_FP, "PredictedFuel", 0U, 0U, 16U, NOMUX, J1939, 1, 100, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_FP_PREDICTED_FUEL_LOWER] =
-        SIG(C_FP, "PredictedFuelLowerBound", 0U, 16U, 16U, NOMUX, J1939, 1, 100, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_FP_PREDICTED_FUEL_UPPER] =
-        SIG(C_FP, "PredictedFuelUpperBound", 0U, 32U, 16U, NOMUX, J1939, 1, 100, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_FP_PREDICTED_TIME] =
-        SIG(C_FP, "PredictedTime", 0U, 48U, 16U, NOMUX, J1939, 1, 10, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_ST_SPEED_INPUT] =
-        SIG(C_ST, "SpeedInputState", 0U, 0U, 2U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 3U),
-    [PFE_CSIG_ST_GRADE_INPUT] =
-        SIG(C_ST, "GradeInputState", 0U, 2U, 2U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 3U),
-    [PFE_CSIG_ST_PLATOON_CONFIG_INPUT] =
-        SIG(C_ST, "PlatoonConfigInputState", 0U, 4U, 2U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 3U),
-    [PFE_CSIG_ST_GRADE_PREVIEW_INPUT] =
-        SIG(C_ST, "GradePreviewInputState", 0U, 6U, 2U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 3U),
-    [PFE_CSIG_ST_DEGRADED_MODE] =
-        SIG(C_ST, "DegradedMode", 0U, 8U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, 2U),
-    [PFE_CSIG_ST_RX_FRAMES_DROPPED] =
-        SIG(C_ST, "RxFramesDropped", 0U, 16U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
-    [PFE_CSIG_ST_TICK_OVERRUNS] =
-        SIG(C_ST, "TickOverruns", 0U, 24U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
-    [PFE_CSIG_ST_TX_FRAMES_DROPPED] =
-        SIG(C_ST, "TxFramesDropped", 0U, 32U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
-    [PFE_CSIG_ST_WARMING_UP] =
-        SIG(C_ST, "WarmingUp", 0U, 40U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_ST_SPEED_CLAMPED] =
-        SIG(C_ST, "SpeedClamped", 0U, 42U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_ST_GRADE_CLAMPED] =
-        SIG(C_ST, "GradeClamped", 0U, 44U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_ST_OUTPUT_SATURATED] =
-        SIG(C_ST, "OutputSaturated", 0U, 46U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_ST_INPUTS_REJECTED] =
-        SIG(C_ST, "InputsRejected", 0U, 48U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
-    [PFE_CSIG_ST_ADDRESS_CONFLICTS] =
-        SIG(C_ST, "AddressConflicts", 0U, 56U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
-    [PFE_CSIG_AC_IDENTITY_NUMBER] =
-        SIG(C_AC, "IdentityNumber", 2837U, 0U, 21U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 0x1FFFFFUL),
-    [PFE_CSIG_AC_MANUFACTURER_CODE] =
-        SIG(C_AC, "ManufacturerCode", 2838U, 21U, 11U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 0x7FFU),
-    [PFE_CSIG_AC_ECU_INSTANCE] =
-        SIG(C_AC, "EcuInstance", 2840U, 32U, 3U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 7U),
-    [PFE_CSIG_AC_FUNCTION_INSTANCE] =
-        SIG(C_AC, "FunctionInstance", 2839U, 35U, 5U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 31U),
-    [PFE_CSIG_AC_FUNCTION] =
-        SIG(C_AC, "Function", 2841U, 40U, 8U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 255U),
-    [PFE_CSIG_AC_RESERVED] =
-        SIG(C_AC, "NameReserved", 0U, 48U, 1U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_AC_VEHICLE_SYSTEM] =
-        SIG(C_AC, "VehicleSystem", 2842U, 49U, 7U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 127U),
-    [PFE_CSIG_AC_VEHICLE_SYSTEM_INSTANCE] =
-        SIG(C_AC, "VehicleSystemInstance", 2843U, 56U, 4U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 15U),
-    [PFE_CSIG_AC_INDUSTRY_GROUP] =
-        SIG(C_AC, "IndustryGroup", 2846U, 60U, 3U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 7U),
-    [PFE_CSIG_AC_ARBITRARY_ADDRESS_CAPABLE] =
-        SIG(C_AC, "ArbitraryAddressCapable", 2844U, 63U, 1U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_RQST_REQUESTED_PGN] =
-        SIG(C_RQ, "RequestedPGN", 2540U, 0U, 24U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 0x3FFFFUL),
-    [PFE_CSIG_VDS_COMPASS_BEARING] =
-        SIG(C_VDS, "CompassBearing", 165U, 0U, 16U, NOMUX, J1939, 1, 128, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_VDS_NAV_SPEED] =
-        SIG(C_VDS, "NavigationBasedVehicleSpeed", 517U, 16U, 16U, NOMUX, J1939, 1, 256, 0, 1, 0U,
-            RAW16_MAX),
-    [PFE_CSIG_VDS_PITCH] =
-        SIG(C_VDS, "Pitch", 583U, 32U, 16U, NOMUX, J1939, 1, 128, -200, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_VDS_ALTITUDE] =
-        SIG(C_VDS, "Altitude", 580U, 48U, 16U, NOMUX, J1939, 1, 8, -2500, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT] =
-        SIG(C_CVW, "PoweredVehicleWeight", 1585U, 0U, 16U, NOMUX, J1939, 10, 1, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT] =
-        SIG(C_CVW, "GrossCombinationVehicleWeight", 1760U, 16U, 16U, NOMUX, J1939, 10, 1, 0, 1, 0U,
-            RAW16_MAX),
-    [PFE_CSIG_OF_OWN_FUEL_RATE] =
-        SIG(C_OF, "OwnFuelRate", 0U, 0U, 16U, NOMUX, J1939, 1, 20, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_OF_OWN_TOTAL_FUEL_USED] =
-        SIG(C_OF, "OwnTotalFuelUsed", 0U, 16U, 32U, NOMUX, J1939, 1, 1000, 0, 1, 0U, RAW32_MAX),
-    [PFE_CSIG_OF_MODEL_IDENTIFIED] =
-        SIG(C_OF, "ModelIdentified", 0U, 48U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_IS_SPEED_SOURCE] =
-        SIG(C_IS, "SpeedSourceAddress", 0U, 0U, 8U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 253U),
-    [PFE_CSIG_IS_GRADE_SOURCE_ADDRESS] =
-        SIG(C_IS, "GradeSourceAddress", 0U, 8U, 8U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 253U),
-    [PFE_CSIG_IS_FUEL_RATE_SOURCE] =
-        SIG(C_IS, "FuelRateSourceAddress", 0U, 16U, 8U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, 253U),
-    [PFE_CSIG_IS_SPEED_SENDERS] =
-        SIG(C_IS, "SpeedSenders", 0U, 24U, 4U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, PFE_INPUT_SENDERS_MAX),
-    [PFE_CSIG_IS_GRADE_SENDERS] =
-        SIG(C_IS, "GradeSenders", 0U, 28U, 4U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, PFE_INPUT_SENDERS_MAX),
-    [PFE_CSIG_IS_GRADE_SOURCE] =
-        SIG(C_IS, "GradeSource", 0U, 32U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_GRADE_SOURCE_NONE),
-    [PFE_CSIG_IS_MASS_SOURCE] =
-        SIG(C_IS, "MassSource", 0U, 40U, 4U, NOMUX, PLAIN, 1, 1, 0, 1, 0U, PFE_MASS_SOURCE_IDENTIFIED),
-    [PFE_CSIG_IS_IDENTIFICATION_STATE] =
-        SIG(C_IS, "IdentificationState", 0U, 44U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_IS_VEHICLE_MASS] =
-        SIG(C_IS, "VehicleMass", 0U, 48U, 16U, NOMUX, J1939, 10, 1, 0, 1, 0U, RAW16_MAX),
-    [PFE_CSIG_DS_RX_FIFO_OVERRUNS] =
-        SIG(C_DS, "RxFifoOverruns", 0U, 0U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
-    [PFE_CSIG_DS_BUS_OFF_EVENTS] =
-        SIG(C_DS, "BusOffEvents", 0U, 8U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
-    [PFE_CSIG_DS_ERROR_WARNING] =
-        SIG(C_DS, "ErrorWarning", 0U, 16U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_DS_ERROR_PASSIVE] =
-        SIG(C_DS, "ErrorPassive", 0U, 18U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_DS_BUS_OFF] =
-        SIG(C_DS, "BusOff", 0U, 20U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_DS_NVM_WRITE_FAILING] =
-        SIG(C_DS, "NvmWriteFailing", 0U, 22U, 2U, NOMUX, J1939, 1, 1, 0, 1, 0U, 1U),
-    [PFE_CSIG_DS_RESET_CAUSE] =
-        SIG(C_DS, "ResetCause", 0U, 24U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, 3U),
-    [PFE_CSIG_DS_TX_ERROR_COUNTER] =
-        SIG(C_DS, "TxErrorCounter", 0U, 32U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
-    [PFE_CSIG_DS_RX_ERROR_COUNTER] =
-        SIG(C_DS, "RxErrorCounter", 0U, 40U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
-    [PFE_CSIG_DS_NVM_WRITE_FAILURES] =
-        SIG(C_DS, "NvmWriteFailures", 0U, 48U, 8U, NOMUX, J1939, 1, 1, 0, 1, 0U, PFE_STATUS_COUNTER_MAX),
-};
+/* pfe_codec_messages[] and pfe_codec_signals[] are written from
+ * can_dbc/pfe.dbc at build time by sim_host/tools/dbc2c.c (build/gen/pfe_dbc.c). */
 
 const uint32_t pfe_codec_signal_count = (uint32_t)PFE_CODEC_SIGNAL_COUNT;
 
@@ -462,87 +224,59 @@ static pfe_sig_state_t get_raw(const pfe_can_frame_t *frame, pfe_sig_index_t i, 
     return pfe_codec_raw_state(&pfe_codec_signals[i], *raw);
 }
 
-static pfe_sig_u32_t dec_u32(const pfe_can_frame_t *frame, pfe_sig_index_t i)
+/* Firmware value of a valid raw count (raw <= raw_max): raw * fw_num /
+ * fw_den rounded to nearest, halves up, plus fw_offset (pfe_codec.h). At
+ * each call the signal is a constant entry of pfe_codec_signals[], so the
+ * branches fold: a count is the raw value itself, a scale whose products
+ * stay below 2^32 (speed, angles, grades) takes 32-bit arithmetic, a larger
+ * one (fuel rate) a 64-bit product and division. */
+static ALWAYS_INLINE int64_t fw_of_raw(const pfe_codec_signal_t *sig, uint32_t raw)
+{
+    const uint32_t num = (uint32_t)sig->fw_num;
+    const uint32_t den = (uint32_t)sig->fw_den;
+    const uint64_t num64 = num;
+    const uint64_t den64 = den;
+    uint64_t v;
+    if (den == 1U) {
+        v = (num == 1U) ? (uint64_t)raw : ((uint64_t)raw * num64);
+    } else if ((((uint64_t)sig->raw_max * num64) + (den64 / 2U)) <= UINT32_MAX) {
+        const uint32_t q = ((raw * num) + (den / 2U)) / den;
+        v = q;
+    } else {
+        v = (((uint64_t)raw * num64) + (den64 / 2U)) / den64;
+    }
+    return (int64_t)v + sig->fw_offset; /* dbc2c: the result fits the field's type */
+}
+
+static ALWAYS_INLINE pfe_sig_u32_t dec_u32(const pfe_can_frame_t *frame, pfe_sig_index_t i)
 {
     uint32_t raw;
     const pfe_sig_state_t st = get_raw(frame, i, &raw);
-    const pfe_sig_u32_t out = {(st == PFE_SIG_VALID) ? raw : 0U, st};
+    const pfe_sig_u32_t out = {(st == PFE_SIG_VALID) ? (uint32_t)fw_of_raw(&pfe_codec_signals[i], raw) : 0U,
+                               st};
+    return out;
+}
+
+static ALWAYS_INLINE pfe_sig_i32_t dec_i32(const pfe_can_frame_t *frame, pfe_sig_index_t i)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = get_raw(frame, i, &raw);
+    const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? (int32_t)fw_of_raw(&pfe_codec_signals[i], raw) : 0, st};
+    return out;
+}
+
+static ALWAYS_INLINE pfe_sig_u64_t dec_u64(const pfe_can_frame_t *frame, pfe_sig_index_t i)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = get_raw(frame, i, &raw);
+    const pfe_sig_u64_t out = {(st == PFE_SIG_VALID) ? (uint64_t)fw_of_raw(&pfe_codec_signals[i], raw) : 0U,
+                               st};
     return out;
 }
 
 static const pfe_sig_u32_t u32_na = {0U, PFE_SIG_NOT_AVAILABLE};
 static const pfe_sig_i32_t i32_na = {0, PFE_SIG_NOT_AVAILABLE};
 static const pfe_sig_u64_t u64_na = {0U, PFE_SIG_NOT_AVAILABLE};
-
-/* Unit conversions of the received raw values (raw within its valid range). */
-static int32_t speed_mm_s_of_raw(uint32_t raw)       /* 1/256 km/h = 625/576 mm/s */
-{
-    const uint32_t mm_s = ((raw * 625U) + 288U) / 576U;  /* raw <= 0xFAFF: below 2^26 */
-    return (int32_t)mm_s;
-}
-
-static int32_t angle_udeg_of_raw(uint32_t raw)       /* 0.002 deg, offset -64 deg */
-{
-    return ((int32_t)raw * 2000) - 64000000;
-}
-
-static int32_t grade_ppm_of_raw(uint32_t raw)        /* 0.002 % = 20 ppm, offset -64 % */
-{
-    return ((int32_t)raw * 20) - 640000;
-}
-
-static uint32_t fuel_rate_nl_s_of_raw(uint32_t raw)  /* 0.05 L/h = 125000/9 nL/s */
-{
-    return (uint32_t)((((uint64_t)raw * 125000U) + 4U) / 9U);
-}
-
-static pfe_sig_i32_t dec_speed(const pfe_can_frame_t *frame, pfe_sig_index_t i)
-{
-    uint32_t raw;
-    const pfe_sig_state_t st = get_raw(frame, i, &raw);
-    const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? speed_mm_s_of_raw(raw) : 0, st};
-    return out;
-}
-
-static pfe_sig_i32_t dec_angle(const pfe_can_frame_t *frame, pfe_sig_index_t i)
-{
-    uint32_t raw;
-    const pfe_sig_state_t st = get_raw(frame, i, &raw);
-    const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? angle_udeg_of_raw(raw) : 0, st};
-    return out;
-}
-
-static pfe_sig_i32_t dec_grade(const pfe_can_frame_t *frame, pfe_sig_index_t i)
-{
-    uint32_t raw;
-    const pfe_sig_state_t st = get_raw(frame, i, &raw);
-    const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? grade_ppm_of_raw(raw) : 0, st};
-    return out;
-}
-
-static pfe_sig_u32_t dec_fuel_rate(const pfe_can_frame_t *frame, pfe_sig_index_t i)
-{
-    uint32_t raw;
-    const pfe_sig_state_t st = get_raw(frame, i, &raw);
-    const pfe_sig_u32_t out = {(st == PFE_SIG_VALID) ? fuel_rate_nl_s_of_raw(raw) : 0U, st};
-    return out;
-}
-
-/* Raw times a whole number of firmware units (0.001 L = 1000 uL, ...). */
-static pfe_sig_u64_t dec_u64_times(const pfe_can_frame_t *frame, pfe_sig_index_t i, uint32_t unit)
-{
-    uint32_t raw;
-    const pfe_sig_state_t st = get_raw(frame, i, &raw);
-    const pfe_sig_u64_t out = {(st == PFE_SIG_VALID) ? ((uint64_t)raw * unit) : 0U, st};
-    return out;
-}
-
-static pfe_sig_u32_t dec_u32_times(const pfe_can_frame_t *frame, pfe_sig_index_t i, uint32_t unit)
-{
-    const pfe_sig_u64_t v = dec_u64_times(frame, i, unit);
-    const pfe_sig_u32_t out = {(uint32_t)v.value, v.state}; /* callers: raw_max * unit < 2^32 */
-    return out;
-}
 
 /* Encoding: one message's payload, built in a register and stored once by
  * enc_end(), and the mask of clamped signals. */
@@ -594,34 +328,60 @@ static int enc_end(const enc_t *e)
     return (int)e->clamped;
 }
 
-/* Raw counts of firmware values (rounded to nearest). */
-static int64_t raw_of_speed_mm_s(int32_t mm_s)
+/* Raw count of a signed firmware value: (value - fw_offset) * fw_den /
+ * fw_num rounded to nearest, halves up; |product| < 2^63. */
+static ALWAYS_INLINE int64_t raw_of_i32(pfe_sig_index_t i, int32_t value)
 {
-    return div_round_i64((int64_t)mm_s * 576, 625);
+    const pfe_codec_signal_t *sig = &pfe_codec_signals[i];
+    return div_round_i64(((int64_t)value - sig->fw_offset) * sig->fw_den, sig->fw_num);
 }
 
-static int64_t raw_of_angle_udeg(int32_t udeg)
-{
-    return div_round_i64((int64_t)udeg + 64000000, 2000);
-}
+/* Dividing n by a constant above PFE_UDIV_SMALL_MAX that is a multiple of
+ * 1000 (0.05 L/h is 125000/9 nL/s) takes two cheap divisions, by 1000 and
+ * by the rest: floor(floor(n / a) / b) = floor(n / (a b)). */
+#define SPLIT_DIVISOR 1000U
 
-static int64_t raw_of_grade_ppm(int32_t ppm)
+/* Raw count of an unsigned firmware value, as raw_of_i32(); a value below
+ * the offset gives -1 and one whose raw count passes INT64_MAX gives
+ * INT64_MAX (both clamped by enc_put()). */
+static ALWAYS_INLINE int64_t raw_of_u64(pfe_sig_index_t i, uint64_t value)
 {
-    return div_round_i64((int64_t)ppm + 640000, 20);
-}
-
-/* nl_s * 9 / 125000 rounded (halves up) as floor((n + 62500) / 125000), in
- * two divisions cheap on the Cortex-M4 (pfe_udiv_u64()): by 1000, then by
- * 125. n + 62500 < 2^36. */
-static int64_t raw_of_fuel_rate_nl_s(uint32_t nl_s)
-{
-    const uint64_t n = ((uint64_t)nl_s * 9U) + 62500U;
-    return (int64_t)pfe_udiv_u64(pfe_udiv_u64(n, 1000U, NULL), 125U, NULL);
-}
-
-static int64_t raw_of_unsigned(uint64_t value, uint64_t unit)
-{
-    return (int64_t)pfe_udiv_round_u64(value, unit); /* value / unit < 2^63 for unit >= 2 */
+    const pfe_codec_signal_t *sig = &pfe_codec_signals[i];
+    const uint64_t num = (uint64_t)(uint32_t)sig->fw_num;
+    const uint64_t den = (uint64_t)(uint32_t)sig->fw_den;
+    uint64_t x = value;
+    bool below = false;
+    if (sig->fw_offset > 0) {
+        const uint64_t off = (uint64_t)(uint32_t)sig->fw_offset;
+        below = x < off;
+        x = below ? 0U : (x - off);
+    } else if (sig->fw_offset < 0) {
+        const uint64_t off = (uint64_t)(-(int64_t)sig->fw_offset);
+        x = (x > (UINT64_MAX - off)) ? UINT64_MAX : (x + off);
+    } else {
+        /* no offset */
+    }
+    uint64_t q;
+    if ((num == 1U) && (den == 1U)) {
+        q = x;
+    } else if (den == 1U) {
+        q = pfe_udiv_round_u64(x, num);
+    } else if (x > ((UINT64_MAX - num) / den)) {
+        q = UINT64_MAX;
+    } else {
+        const uint64_t n = (x * den) + (num / 2U);
+        if ((num > PFE_UDIV_SMALL_MAX) && ((num % SPLIT_DIVISOR) == 0U) &&
+            ((num / SPLIT_DIVISOR) <= PFE_UDIV_SMALL_MAX)) {
+            q = pfe_udiv_u64(pfe_udiv_u64(n, SPLIT_DIVISOR, NULL), num / SPLIT_DIVISOR, NULL);
+        } else {
+            q = pfe_udiv_u64(n, num, NULL);
+        }
+    }
+    int64_t raw = (q > (uint64_t)INT64_MAX) ? INT64_MAX : (int64_t)q;
+    if (below) {
+        raw = -1;
+    }
+    return raw;
 }
 
 /* ------------------------------------------------------------ CCVS1 */
@@ -636,7 +396,7 @@ int pfe_codec_decode_ccvs1(const pfe_can_frame_t *frame, pfe_msg_ccvs1_t *out)
     if (rc != PFE_OK) {
         return rc;
     }
-    out->speed_mm_s = dec_speed(frame, PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED); /* CCVS1.WheelBasedVehicleSpeed (SPN 84) */
+    out->speed_mm_s = dec_i32(frame, PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED); /* CCVS1.WheelBasedVehicleSpeed (SPN 84) */
     return PFE_OK;
 }
 
@@ -647,7 +407,7 @@ int pfe_codec_encode_ccvs1(pfe_can_frame_t *frame, const pfe_msg_ccvs1_t *in, ui
         return PFE_EINVAL;
     }
     enc_put(&e, PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED, in->speed_mm_s.state,
-            raw_of_speed_mm_s(in->speed_mm_s.value));
+            raw_of_i32(PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED, in->speed_mm_s.value));
     return enc_end(&e);
 }
 
@@ -665,8 +425,8 @@ int pfe_codec_decode_ssi(const pfe_can_frame_t *frame, pfe_msg_ssi_t *out)
     if (rc != PFE_OK) {
         return rc;
     }
-    out->pitch_udeg = dec_angle(frame, PFE_CSIG_SSI_PITCH_ANGLE);          /* SSI.PitchAngle (SPN 3318) */
-    out->roll_udeg = dec_angle(frame, PFE_CSIG_SSI_ROLL_ANGLE);            /* SSI.RollAngle (SPN 3319) */
+    out->pitch_udeg = dec_i32(frame, PFE_CSIG_SSI_PITCH_ANGLE);          /* SSI.PitchAngle (SPN 3318) */
+    out->roll_udeg = dec_i32(frame, PFE_CSIG_SSI_ROLL_ANGLE);            /* SSI.RollAngle (SPN 3319) */
     out->pitch_fom = dec_u32(frame, PFE_CSIG_SSI_PITCH_ANGLE_FOM);         /* SSI.PitchAngleFigureOfMerit (SPN 3323) */
     return PFE_OK;
 }
@@ -677,9 +437,12 @@ int pfe_codec_encode_ssi(pfe_can_frame_t *frame, const pfe_msg_ssi_t *in, uint8_
     if ((in == NULL) || (enc_begin(&e, frame, PFE_MSG_SSI, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
         return PFE_EINVAL;
     }
-    enc_put(&e, PFE_CSIG_SSI_PITCH_ANGLE, in->pitch_udeg.state, raw_of_angle_udeg(in->pitch_udeg.value));
-    enc_put(&e, PFE_CSIG_SSI_ROLL_ANGLE, in->roll_udeg.state, raw_of_angle_udeg(in->roll_udeg.value));
-    enc_put(&e, PFE_CSIG_SSI_PITCH_ANGLE_FOM, in->pitch_fom.state, (int64_t)in->pitch_fom.value);
+    enc_put(&e, PFE_CSIG_SSI_PITCH_ANGLE, in->pitch_udeg.state,
+            raw_of_i32(PFE_CSIG_SSI_PITCH_ANGLE, in->pitch_udeg.value));
+    enc_put(&e, PFE_CSIG_SSI_ROLL_ANGLE, in->roll_udeg.state,
+            raw_of_i32(PFE_CSIG_SSI_ROLL_ANGLE, in->roll_udeg.value));
+    enc_put(&e, PFE_CSIG_SSI_PITCH_ANGLE_FOM, in->pitch_fom.state,
+            raw_of_u64(PFE_CSIG_SSI_PITCH_ANGLE_FOM, in->pitch_fom.value));
     return enc_end(&e);
 }
 
@@ -777,9 +540,9 @@ int pfe_codec_decode_platoon_config(const pfe_can_frame_t *frame, pfe_msg_platoo
     }
     out->n_vehicles = dec_u32(frame, PFE_CSIG_PC_NUMBER_OF_VEHICLES);       /* PFE_PlatoonConfig.NumberOfVehicles */
     out->own_position = dec_u32(frame, PFE_CSIG_PC_OWN_POSITION);           /* PFE_PlatoonConfig.OwnPosition */
-    out->gap_mm = dec_u32_times(frame, PFE_CSIG_PC_GAP, 10U);               /* PFE_PlatoonConfig.Gap */
+    out->gap_mm = dec_u32(frame, PFE_CSIG_PC_GAP);               /* PFE_PlatoonConfig.Gap */
     out->time_gap_ms = dec_u32(frame, PFE_CSIG_PC_TIME_GAP);                /* PFE_PlatoonConfig.TimeGap */
-    out->set_speed_mm_s = dec_speed(frame, PFE_CSIG_PC_SET_SPEED);          /* PFE_PlatoonConfig.SetSpeed */
+    out->set_speed_mm_s = dec_i32(frame, PFE_CSIG_PC_SET_SPEED);          /* PFE_PlatoonConfig.SetSpeed */
     if ((out->n_vehicles.state == PFE_SIG_VALID) && (out->own_position.state == PFE_SIG_VALID) &&
         (out->own_position.value >= out->n_vehicles.value)) {
         out->own_position = (pfe_sig_u32_t){0U, PFE_SIG_OUT_OF_RANGE};     /* no such position */
@@ -795,12 +558,16 @@ int pfe_codec_encode_platoon_config(pfe_can_frame_t *frame, const pfe_msg_platoo
         (enc_begin(&e, frame, PFE_MSG_PLATOON_CONFIG, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
         return PFE_EINVAL;
     }
-    enc_put(&e, PFE_CSIG_PC_NUMBER_OF_VEHICLES, in->n_vehicles.state, (int64_t)in->n_vehicles.value);
-    enc_put(&e, PFE_CSIG_PC_OWN_POSITION, in->own_position.state, (int64_t)in->own_position.value);
-    enc_put(&e, PFE_CSIG_PC_GAP, in->gap_mm.state, raw_of_unsigned(in->gap_mm.value, 10U));
-    enc_put(&e, PFE_CSIG_PC_TIME_GAP, in->time_gap_ms.state, (int64_t)in->time_gap_ms.value);
+    enc_put(&e, PFE_CSIG_PC_NUMBER_OF_VEHICLES, in->n_vehicles.state,
+            raw_of_u64(PFE_CSIG_PC_NUMBER_OF_VEHICLES, in->n_vehicles.value));
+    enc_put(&e, PFE_CSIG_PC_OWN_POSITION, in->own_position.state,
+            raw_of_u64(PFE_CSIG_PC_OWN_POSITION, in->own_position.value));
+    enc_put(&e, PFE_CSIG_PC_GAP, in->gap_mm.state,
+            raw_of_u64(PFE_CSIG_PC_GAP, in->gap_mm.value));
+    enc_put(&e, PFE_CSIG_PC_TIME_GAP, in->time_gap_ms.state,
+            raw_of_u64(PFE_CSIG_PC_TIME_GAP, in->time_gap_ms.value));
     enc_put(&e, PFE_CSIG_PC_SET_SPEED, in->set_speed_mm_s.state,
-            raw_of_speed_mm_s(in->set_speed_mm_s.value));
+            raw_of_i32(PFE_CSIG_PC_SET_SPEED, in->set_speed_mm_s.value));
     return enc_end(&e);
 }
 
@@ -856,9 +623,9 @@ int pfe_codec_decode_grade_preview(const pfe_can_frame_t *frame, pfe_msg_grade_p
         out->spacing_m = dec_u32(frame, PFE_CSIG_GP_SAMPLE_SPACING);          /* PFE_GradePreview.SampleSpacing (m0) */
     } else {
         out->first_index = dec_u32(frame, PFE_CSIG_GP_SAMPLE_INDEX);          /* PFE_GradePreview.SampleIndex (m1) */
-        out->grade_ppm[0] = dec_grade(frame, PFE_CSIG_GP_GRADE_SAMPLE0);      /* PFE_GradePreview.GradeSample0 (m1) */
-        out->grade_ppm[1] = dec_grade(frame, PFE_CSIG_GP_GRADE_SAMPLE1);      /* PFE_GradePreview.GradeSample1 (m1) */
-        out->grade_ppm[2] = dec_grade(frame, PFE_CSIG_GP_GRADE_SAMPLE2);      /* PFE_GradePreview.GradeSample2 (m1) */
+        out->grade_ppm[0] = dec_i32(frame, PFE_CSIG_GP_GRADE_SAMPLE0);      /* PFE_GradePreview.GradeSample0 (m1) */
+        out->grade_ppm[1] = dec_i32(frame, PFE_CSIG_GP_GRADE_SAMPLE1);      /* PFE_GradePreview.GradeSample1 (m1) */
+        out->grade_ppm[2] = dec_i32(frame, PFE_CSIG_GP_GRADE_SAMPLE2);      /* PFE_GradePreview.GradeSample2 (m1) */
     }
     return PFE_OK;
 }
@@ -872,16 +639,24 @@ int pfe_codec_encode_grade_preview(pfe_can_frame_t *frame, const pfe_msg_grade_p
         (enc_begin(&e, frame, PFE_MSG_GRADE_PREVIEW, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
         return PFE_EINVAL;
     }
-    enc_put(&e, PFE_CSIG_GP_FRAME_TYPE, PFE_SIG_VALID, (int64_t)in->frame_type.value);
-    enc_put(&e, PFE_CSIG_GP_PREVIEW_ID, in->preview_id.state, (int64_t)in->preview_id.value);
+    enc_put(&e, PFE_CSIG_GP_FRAME_TYPE, PFE_SIG_VALID,
+            raw_of_u64(PFE_CSIG_GP_FRAME_TYPE, in->frame_type.value));
+    enc_put(&e, PFE_CSIG_GP_PREVIEW_ID, in->preview_id.state,
+            raw_of_u64(PFE_CSIG_GP_PREVIEW_ID, in->preview_id.value));
     if (in->frame_type.value == PFE_PREVIEW_FRAME_HEADER) {
-        enc_put(&e, PFE_CSIG_GP_SAMPLE_COUNT, in->sample_count.state, (int64_t)in->sample_count.value);
-        enc_put(&e, PFE_CSIG_GP_SAMPLE_SPACING, in->spacing_m.state, (int64_t)in->spacing_m.value);
+        enc_put(&e, PFE_CSIG_GP_SAMPLE_COUNT, in->sample_count.state,
+            raw_of_u64(PFE_CSIG_GP_SAMPLE_COUNT, in->sample_count.value));
+        enc_put(&e, PFE_CSIG_GP_SAMPLE_SPACING, in->spacing_m.state,
+            raw_of_u64(PFE_CSIG_GP_SAMPLE_SPACING, in->spacing_m.value));
     } else {
-        enc_put(&e, PFE_CSIG_GP_SAMPLE_INDEX, in->first_index.state, (int64_t)in->first_index.value);
-        enc_put(&e, PFE_CSIG_GP_GRADE_SAMPLE0, in->grade_ppm[0].state, raw_of_grade_ppm(in->grade_ppm[0].value));
-        enc_put(&e, PFE_CSIG_GP_GRADE_SAMPLE1, in->grade_ppm[1].state, raw_of_grade_ppm(in->grade_ppm[1].value));
-        enc_put(&e, PFE_CSIG_GP_GRADE_SAMPLE2, in->grade_ppm[2].state, raw_of_grade_ppm(in->grade_ppm[2].value));
+        enc_put(&e, PFE_CSIG_GP_SAMPLE_INDEX, in->first_index.state,
+            raw_of_u64(PFE_CSIG_GP_SAMPLE_INDEX, in->first_index.value));
+        enc_put(&e, PFE_CSIG_GP_GRADE_SAMPLE0, in->grade_ppm[0].state,
+            raw_of_i32(PFE_CSIG_GP_GRADE_SAMPLE0, in->grade_ppm[0].value));
+        enc_put(&e, PFE_CSIG_GP_GRADE_SAMPLE1, in->grade_ppm[1].state,
+            raw_of_i32(PFE_CSIG_GP_GRADE_SAMPLE1, in->grade_ppm[1].value));
+        enc_put(&e, PFE_CSIG_GP_GRADE_SAMPLE2, in->grade_ppm[2].state,
+            raw_of_i32(PFE_CSIG_GP_GRADE_SAMPLE2, in->grade_ppm[2].value));
     }
     return enc_end(&e);
 }
@@ -978,7 +753,7 @@ pfe_sig_state_t pfe_preview_grade_ppm(const pfe_preview_t *pv, uint32_t index, i
     const uint32_t raw = pv->raw[index];
     const pfe_sig_state_t st = pfe_codec_raw_state(&pfe_codec_signals[PFE_CSIG_GP_GRADE_SAMPLE0], raw);
     if ((st == PFE_SIG_VALID) && (grade_ppm != NULL)) {
-        *grade_ppm = grade_ppm_of_raw(raw);
+        *grade_ppm = (int32_t)fw_of_raw(&pfe_codec_signals[PFE_CSIG_GP_GRADE_SAMPLE0], raw);
     }
     return st;
 }
@@ -992,7 +767,7 @@ uint32_t pfe_preview_copy_ppm(const pfe_preview_t *pv, uint32_t first, uint32_t 
     }
     const uint32_t n = ((pv->sample_count - first) < count) ? (pv->sample_count - first) : count;
     for (uint32_t k = 0U; k < n; k++) {
-        grade_ppm[k] = grade_ppm_of_raw(pv->raw[first + k]);
+        grade_ppm[k] = (int32_t)fw_of_raw(&pfe_codec_signals[PFE_CSIG_GP_GRADE_SAMPLE0], pv->raw[first + k]);
     }
     return n;
 }
@@ -1009,7 +784,7 @@ int pfe_codec_decode_lfe1(const pfe_can_frame_t *frame, pfe_msg_lfe1_t *out)
     if (rc != PFE_OK) {
         return rc;
     }
-    out->fuel_rate_nl_s = dec_fuel_rate(frame, PFE_CSIG_LFE1_ENGINE_FUEL_RATE); /* LFE1.EngineFuelRate (SPN 183) */
+    out->fuel_rate_nl_s = dec_u32(frame, PFE_CSIG_LFE1_ENGINE_FUEL_RATE); /* LFE1.EngineFuelRate (SPN 183) */
     return PFE_OK;
 }
 
@@ -1020,7 +795,7 @@ int pfe_codec_encode_lfe1(pfe_can_frame_t *frame, const pfe_msg_lfe1_t *in, uint
         return PFE_EINVAL;
     }
     enc_put(&e, PFE_CSIG_LFE1_ENGINE_FUEL_RATE, in->fuel_rate_nl_s.state,
-            raw_of_fuel_rate_nl_s(in->fuel_rate_nl_s.value));
+            raw_of_u64(PFE_CSIG_LFE1_ENGINE_FUEL_RATE, in->fuel_rate_nl_s.value));
     return enc_end(&e);
 }
 
@@ -1037,8 +812,8 @@ int pfe_codec_decode_platoon_fuel(const pfe_can_frame_t *frame, pfe_msg_platoon_
     if (rc != PFE_OK) {
         return rc;
     }
-    out->fuel_rate_nl_s = dec_fuel_rate(frame, PFE_CSIG_PF_PLATOON_FUEL_RATE);          /* PFE_PlatoonFuel.PlatoonFuelRate */
-    out->fuel_used_ul = dec_u64_times(frame, PFE_CSIG_PF_PLATOON_TOTAL_FUEL_USED, 1000U); /* PFE_PlatoonFuel.PlatoonTotalFuelUsed */
+    out->fuel_rate_nl_s = dec_u32(frame, PFE_CSIG_PF_PLATOON_FUEL_RATE);          /* PFE_PlatoonFuel.PlatoonFuelRate */
+    out->fuel_used_ul = dec_u64(frame, PFE_CSIG_PF_PLATOON_TOTAL_FUEL_USED); /* PFE_PlatoonFuel.PlatoonTotalFuelUsed */
     return PFE_OK;
 }
 
@@ -1051,9 +826,9 @@ int pfe_codec_encode_platoon_fuel(pfe_can_frame_t *frame, const pfe_msg_platoon_
         return PFE_EINVAL;
     }
     enc_put(&e, PFE_CSIG_PF_PLATOON_FUEL_RATE, in->fuel_rate_nl_s.state,
-            raw_of_fuel_rate_nl_s(in->fuel_rate_nl_s.value));
+            raw_of_u64(PFE_CSIG_PF_PLATOON_FUEL_RATE, in->fuel_rate_nl_s.value));
     enc_put(&e, PFE_CSIG_PF_PLATOON_TOTAL_FUEL_USED, in->fuel_used_ul.state,
-            raw_of_unsigned(in->fuel_used_ul.value, 1000U));
+            raw_of_u64(PFE_CSIG_PF_PLATOON_TOTAL_FUEL_USED, in->fuel_used_ul.value));
     return enc_end(&e);
 }
 
@@ -1070,8 +845,8 @@ int pfe_codec_decode_hrlfc(const pfe_can_frame_t *frame, pfe_msg_hrlfc_t *out)
     if (rc != PFE_OK) {
         return rc;
     }
-    out->trip_fuel_ul = dec_u64_times(frame, PFE_CSIG_HRLFC_TRIP_FUEL, 1000U);        /* HRLFC.HighResolutionEngineTripFuel (SPN 5053) */
-    out->total_fuel_ul = dec_u64_times(frame, PFE_CSIG_HRLFC_TOTAL_FUEL_USED, 1000U); /* HRLFC.HighResolutionEngineTotalFuelUsed (SPN 5054) */
+    out->trip_fuel_ul = dec_u64(frame, PFE_CSIG_HRLFC_TRIP_FUEL);        /* HRLFC.HighResolutionEngineTripFuel (SPN 5053) */
+    out->total_fuel_ul = dec_u64(frame, PFE_CSIG_HRLFC_TOTAL_FUEL_USED); /* HRLFC.HighResolutionEngineTotalFuelUsed (SPN 5054) */
     return PFE_OK;
 }
 
@@ -1082,9 +857,9 @@ int pfe_codec_encode_hrlfc(pfe_can_frame_t *frame, const pfe_msg_hrlfc_t *in, ui
         return PFE_EINVAL;
     }
     enc_put(&e, PFE_CSIG_HRLFC_TRIP_FUEL, in->trip_fuel_ul.state,
-            raw_of_unsigned(in->trip_fuel_ul.value, 1000U));
+            raw_of_u64(PFE_CSIG_HRLFC_TRIP_FUEL, in->trip_fuel_ul.value));
     enc_put(&e, PFE_CSIG_HRLFC_TOTAL_FUEL_USED, in->total_fuel_ul.state,
-            raw_of_unsigned(in->total_fuel_ul.value, 1000U));
+            raw_of_u64(PFE_CSIG_HRLFC_TOTAL_FUEL_USED, in->total_fuel_ul.value));
     return enc_end(&e);
 }
 
@@ -1103,10 +878,10 @@ int pfe_codec_decode_fuel_prediction(const pfe_can_frame_t *frame, pfe_msg_fuel_
     if (rc != PFE_OK) {
         return rc;
     }
-    out->fuel_ul = dec_u32_times(frame, PFE_CSIG_FP_PREDICTED_FUEL, 10000U);             /* PFE_FuelPrediction.PredictedFuel */
-    out->fuel_lower_ul = dec_u32_times(frame, PFE_CSIG_FP_PREDICTED_FUEL_LOWER, 10000U); /* PFE_FuelPrediction.PredictedFuelLowerBound */
-    out->fuel_upper_ul = dec_u32_times(frame, PFE_CSIG_FP_PREDICTED_FUEL_UPPER, 10000U); /* PFE_FuelPrediction.PredictedFuelUpperBound */
-    out->time_ms = dec_u32_times(frame, PFE_CSIG_FP_PREDICTED_TIME, 100U);               /* PFE_FuelPrediction.PredictedTime */
+    out->fuel_ul = dec_u32(frame, PFE_CSIG_FP_PREDICTED_FUEL);             /* PFE_FuelPrediction.PredictedFuel */
+    out->fuel_lower_ul = dec_u32(frame, PFE_CSIG_FP_PREDICTED_FUEL_LOWER); /* PFE_FuelPrediction.PredictedFuelLowerBound */
+    out->fuel_upper_ul = dec_u32(frame, PFE_CSIG_FP_PREDICTED_FUEL_UPPER); /* PFE_FuelPrediction.PredictedFuelUpperBound */
+    out->time_ms = dec_u32(frame, PFE_CSIG_FP_PREDICTED_TIME);               /* PFE_FuelPrediction.PredictedTime */
     return PFE_OK;
 }
 
@@ -1118,12 +893,14 @@ int pfe_codec_encode_fuel_prediction(pfe_can_frame_t *frame, const pfe_msg_fuel_
         (enc_begin(&e, frame, PFE_MSG_FUEL_PREDICTION, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
         return PFE_EINVAL;
     }
-    enc_put(&e, PFE_CSIG_FP_PREDICTED_FUEL, in->fuel_ul.state, raw_of_unsigned(in->fuel_ul.value, 10000U));
+    enc_put(&e, PFE_CSIG_FP_PREDICTED_FUEL, in->fuel_ul.state,
+            raw_of_u64(PFE_CSIG_FP_PREDICTED_FUEL, in->fuel_ul.value));
     enc_put(&e, PFE_CSIG_FP_PREDICTED_FUEL_LOWER, in->fuel_lower_ul.state,
-            raw_of_unsigned(in->fuel_lower_ul.value, 10000U));
+            raw_of_u64(PFE_CSIG_FP_PREDICTED_FUEL_LOWER, in->fuel_lower_ul.value));
     enc_put(&e, PFE_CSIG_FP_PREDICTED_FUEL_UPPER, in->fuel_upper_ul.state,
-            raw_of_unsigned(in->fuel_upper_ul.value, 10000U));
-    enc_put(&e, PFE_CSIG_FP_PREDICTED_TIME, in->time_ms.state, raw_of_unsigned(in->time_ms.value, 100U));
+            raw_of_u64(PFE_CSIG_FP_PREDICTED_FUEL_UPPER, in->fuel_upper_ul.value));
+    enc_put(&e, PFE_CSIG_FP_PREDICTED_TIME, in->time_ms.state,
+            raw_of_u64(PFE_CSIG_FP_PREDICTED_TIME, in->time_ms.value));
     return enc_end(&e);
 }
 
@@ -1226,21 +1003,26 @@ int pfe_codec_encode_status(pfe_can_frame_t *frame, const pfe_msg_status_t *in, 
     enc_put(&e, PFE_CSIG_ST_GRADE_INPUT, PFE_SIG_VALID, (int64_t)codes[1]);
     enc_put(&e, PFE_CSIG_ST_PLATOON_CONFIG_INPUT, PFE_SIG_VALID, (int64_t)codes[2]);
     enc_put(&e, PFE_CSIG_ST_GRADE_PREVIEW_INPUT, PFE_SIG_VALID, (int64_t)codes[3]);
-    enc_put(&e, PFE_CSIG_ST_DEGRADED_MODE, in->mode.state, (int64_t)in->mode.value);
+    enc_put(&e, PFE_CSIG_ST_DEGRADED_MODE, in->mode.state,
+            raw_of_u64(PFE_CSIG_ST_DEGRADED_MODE, in->mode.value));
     enc_put(&e, PFE_CSIG_ST_RX_FRAMES_DROPPED, in->rx_frames_dropped.state,
-            (int64_t)in->rx_frames_dropped.value);
-    enc_put(&e, PFE_CSIG_ST_TICK_OVERRUNS, in->tick_overruns.state, (int64_t)in->tick_overruns.value);
+            raw_of_u64(PFE_CSIG_ST_RX_FRAMES_DROPPED, in->rx_frames_dropped.value));
+    enc_put(&e, PFE_CSIG_ST_TICK_OVERRUNS, in->tick_overruns.state,
+            raw_of_u64(PFE_CSIG_ST_TICK_OVERRUNS, in->tick_overruns.value));
     enc_put(&e, PFE_CSIG_ST_TX_FRAMES_DROPPED, in->tx_frames_dropped.state,
-            (int64_t)in->tx_frames_dropped.value);
-    enc_put(&e, PFE_CSIG_ST_WARMING_UP, in->warming_up.state, (int64_t)in->warming_up.value);
-    enc_put(&e, PFE_CSIG_ST_SPEED_CLAMPED, in->speed_clamped.state, (int64_t)in->speed_clamped.value);
-    enc_put(&e, PFE_CSIG_ST_GRADE_CLAMPED, in->grade_clamped.state, (int64_t)in->grade_clamped.value);
+            raw_of_u64(PFE_CSIG_ST_TX_FRAMES_DROPPED, in->tx_frames_dropped.value));
+    enc_put(&e, PFE_CSIG_ST_WARMING_UP, in->warming_up.state,
+            raw_of_u64(PFE_CSIG_ST_WARMING_UP, in->warming_up.value));
+    enc_put(&e, PFE_CSIG_ST_SPEED_CLAMPED, in->speed_clamped.state,
+            raw_of_u64(PFE_CSIG_ST_SPEED_CLAMPED, in->speed_clamped.value));
+    enc_put(&e, PFE_CSIG_ST_GRADE_CLAMPED, in->grade_clamped.state,
+            raw_of_u64(PFE_CSIG_ST_GRADE_CLAMPED, in->grade_clamped.value));
     enc_put(&e, PFE_CSIG_ST_OUTPUT_SATURATED, in->output_saturated.state,
-            (int64_t)in->output_saturated.value);
+            raw_of_u64(PFE_CSIG_ST_OUTPUT_SATURATED, in->output_saturated.value));
     enc_put(&e, PFE_CSIG_ST_INPUTS_REJECTED, in->inputs_rejected.state,
-            (int64_t)in->inputs_rejected.value);
+            raw_of_u64(PFE_CSIG_ST_INPUTS_REJECTED, in->inputs_rejected.value));
     enc_put(&e, PFE_CSIG_ST_ADDRESS_CONFLICTS, in->address_conflicts.state,
-            (int64_t)in->address_conflicts.value);
+            raw_of_u64(PFE_CSIG_ST_ADDRESS_CONFLICTS, in->address_conflicts.value));
     return enc_end(&e);
 }
 
@@ -1368,27 +1150,6 @@ int pfe_codec_encode_request(pfe_can_frame_t *frame, uint32_t pgn, uint8_t desti
 
 /* ------------------------------------------------------------ VDS */
 
-static int32_t mdeg_of_raw128(uint32_t raw)          /* 1/128 deg = 125/16 mdeg, rounded */
-{
-    const uint32_t mdeg = ((raw * 125U) + 8U) / 16U; /* raw <= 0xFAFF: below 2^23 */
-    return (int32_t)mdeg;
-}
-
-static pfe_sig_i32_t dec_i32_affine(const pfe_can_frame_t *frame, pfe_sig_index_t i,
-                                    int32_t (*of_raw)(uint32_t), int32_t offset)
-{
-    uint32_t raw;
-    const pfe_sig_state_t st = get_raw(frame, i, &raw);
-    const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? (of_raw(raw) + offset) : 0, st};
-    return out;
-}
-
-static int32_t mm_of_raw_altitude(uint32_t raw)      /* 0.125 m = 125 mm */
-{
-    const uint32_t mm = raw * 125U; /* raw <= 0xFAFF: below 2^23 */
-    return (int32_t)mm;
-}
-
 int pfe_codec_decode_vds(const pfe_can_frame_t *frame, pfe_msg_vds_t *out)
 {
     if (out == NULL) {
@@ -1402,14 +1163,10 @@ int pfe_codec_decode_vds(const pfe_can_frame_t *frame, pfe_msg_vds_t *out)
     if (rc != PFE_OK) {
         return rc;
     }
-    const pfe_sig_i32_t bearing =
-        dec_i32_affine(frame, PFE_CSIG_VDS_COMPASS_BEARING, mdeg_of_raw128, 0); /* VDS.CompassBearing (SPN 165) */
-    out->bearing_mdeg.value = (uint32_t)bearing.value;
-    out->bearing_mdeg.state = bearing.state;
-    out->nav_speed_mm_s = dec_speed(frame, PFE_CSIG_VDS_NAV_SPEED);             /* VDS.NavigationBasedVehicleSpeed (SPN 517) */
-    out->pitch_mdeg = dec_i32_affine(frame, PFE_CSIG_VDS_PITCH, mdeg_of_raw128, -200000); /* VDS.Pitch (SPN 583) */
-    out->altitude_mm =
-        dec_i32_affine(frame, PFE_CSIG_VDS_ALTITUDE, mm_of_raw_altitude, -2500000); /* VDS.Altitude (SPN 580) */
+    out->bearing_mdeg = dec_u32(frame, PFE_CSIG_VDS_COMPASS_BEARING);   /* VDS.CompassBearing (SPN 165) */
+    out->nav_speed_mm_s = dec_i32(frame, PFE_CSIG_VDS_NAV_SPEED);       /* VDS.NavigationBasedVehicleSpeed (SPN 517) */
+    out->pitch_mdeg = dec_i32(frame, PFE_CSIG_VDS_PITCH);               /* VDS.Pitch (SPN 583) */
+    out->altitude_mm = dec_i32(frame, PFE_CSIG_VDS_ALTITUDE);           /* VDS.Altitude (SPN 580) */
     return PFE_OK;
 }
 
@@ -1420,13 +1177,13 @@ int pfe_codec_encode_vds(pfe_can_frame_t *frame, const pfe_msg_vds_t *in, uint8_
         return PFE_EINVAL;
     }
     enc_put(&e, PFE_CSIG_VDS_COMPASS_BEARING, in->bearing_mdeg.state,
-            div_round_i64((int64_t)in->bearing_mdeg.value * 16, 125));
+            raw_of_u64(PFE_CSIG_VDS_COMPASS_BEARING, in->bearing_mdeg.value));
     enc_put(&e, PFE_CSIG_VDS_NAV_SPEED, in->nav_speed_mm_s.state,
-            raw_of_speed_mm_s(in->nav_speed_mm_s.value));
+            raw_of_i32(PFE_CSIG_VDS_NAV_SPEED, in->nav_speed_mm_s.value));
     enc_put(&e, PFE_CSIG_VDS_PITCH, in->pitch_mdeg.state,
-            div_round_i64(((int64_t)in->pitch_mdeg.value + 200000) * 16, 125));
+            raw_of_i32(PFE_CSIG_VDS_PITCH, in->pitch_mdeg.value));
     enc_put(&e, PFE_CSIG_VDS_ALTITUDE, in->altitude_mm.state,
-            div_round_i64((int64_t)in->altitude_mm.value + 2500000, 125));
+            raw_of_i32(PFE_CSIG_VDS_ALTITUDE, in->altitude_mm.value));
     return enc_end(&e);
 }
 
@@ -1443,8 +1200,8 @@ int pfe_codec_decode_cvw(const pfe_can_frame_t *frame, pfe_msg_cvw_t *out)
     if (rc != PFE_OK) {
         return rc;
     }
-    out->powered_vehicle_kg = dec_u32_times(frame, PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT, 10U);     /* CVW.PoweredVehicleWeight (SPN 1585) */
-    out->gross_combination_kg = dec_u32_times(frame, PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT, 10U); /* CVW.GrossCombinationVehicleWeight (SPN 1760) */
+    out->powered_vehicle_kg = dec_u32(frame, PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT);     /* CVW.PoweredVehicleWeight (SPN 1585) */
+    out->gross_combination_kg = dec_u32(frame, PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT); /* CVW.GrossCombinationVehicleWeight (SPN 1760) */
     return PFE_OK;
 }
 
@@ -1455,9 +1212,9 @@ int pfe_codec_encode_cvw(pfe_can_frame_t *frame, const pfe_msg_cvw_t *in, uint8_
         return PFE_EINVAL;
     }
     enc_put(&e, PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT, in->powered_vehicle_kg.state,
-            raw_of_unsigned(in->powered_vehicle_kg.value, 10U));
+            raw_of_u64(PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT, in->powered_vehicle_kg.value));
     enc_put(&e, PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT, in->gross_combination_kg.state,
-            raw_of_unsigned(in->gross_combination_kg.value, 10U));
+            raw_of_u64(PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT, in->gross_combination_kg.value));
     return enc_end(&e);
 }
 
@@ -1475,8 +1232,8 @@ int pfe_codec_decode_own_fuel(const pfe_can_frame_t *frame, pfe_msg_own_fuel_t *
     if (rc != PFE_OK) {
         return rc;
     }
-    out->fuel_rate_nl_s = dec_fuel_rate(frame, PFE_CSIG_OF_OWN_FUEL_RATE);               /* PFE_OwnFuel.OwnFuelRate */
-    out->fuel_used_ul = dec_u64_times(frame, PFE_CSIG_OF_OWN_TOTAL_FUEL_USED, 1000U);    /* PFE_OwnFuel.OwnTotalFuelUsed */
+    out->fuel_rate_nl_s = dec_u32(frame, PFE_CSIG_OF_OWN_FUEL_RATE);               /* PFE_OwnFuel.OwnFuelRate */
+    out->fuel_used_ul = dec_u64(frame, PFE_CSIG_OF_OWN_TOTAL_FUEL_USED);    /* PFE_OwnFuel.OwnTotalFuelUsed */
     out->model_identified = dec_u32(frame, PFE_CSIG_OF_MODEL_IDENTIFIED);                /* PFE_OwnFuel.ModelIdentified */
     return PFE_OK;
 }
@@ -1489,11 +1246,11 @@ int pfe_codec_encode_own_fuel(pfe_can_frame_t *frame, const pfe_msg_own_fuel_t *
         return PFE_EINVAL;
     }
     enc_put(&e, PFE_CSIG_OF_OWN_FUEL_RATE, in->fuel_rate_nl_s.state,
-            raw_of_fuel_rate_nl_s(in->fuel_rate_nl_s.value));
+            raw_of_u64(PFE_CSIG_OF_OWN_FUEL_RATE, in->fuel_rate_nl_s.value));
     enc_put(&e, PFE_CSIG_OF_OWN_TOTAL_FUEL_USED, in->fuel_used_ul.state,
-            raw_of_unsigned(in->fuel_used_ul.value, 1000U));
+            raw_of_u64(PFE_CSIG_OF_OWN_TOTAL_FUEL_USED, in->fuel_used_ul.value));
     enc_put(&e, PFE_CSIG_OF_MODEL_IDENTIFIED, in->model_identified.state,
-            (int64_t)in->model_identified.value);
+            raw_of_u64(PFE_CSIG_OF_MODEL_IDENTIFIED, in->model_identified.value));
     return enc_end(&e);
 }
 
@@ -1525,7 +1282,7 @@ int pfe_codec_decode_input_status(const pfe_can_frame_t *frame, pfe_msg_input_st
     out->grade_source = dec_u32(frame, PFE_CSIG_IS_GRADE_SOURCE);                 /* PFE_InputStatus.GradeSource */
     out->mass_source = dec_u32(frame, PFE_CSIG_IS_MASS_SOURCE);                   /* PFE_InputStatus.MassSource */
     out->identification = dec_u32(frame, PFE_CSIG_IS_IDENTIFICATION_STATE);       /* PFE_InputStatus.IdentificationState */
-    out->vehicle_mass_kg = dec_u32_times(frame, PFE_CSIG_IS_VEHICLE_MASS, 10U);   /* PFE_InputStatus.VehicleMass */
+    out->vehicle_mass_kg = dec_u32(frame, PFE_CSIG_IS_VEHICLE_MASS);   /* PFE_InputStatus.VehicleMass */
     return PFE_OK;
 }
 
@@ -1537,19 +1294,24 @@ int pfe_codec_encode_input_status(pfe_can_frame_t *frame, const pfe_msg_input_st
         (enc_begin(&e, frame, PFE_MSG_INPUT_STATUS, PFE_J1939_ADDR_GLOBAL, source) != PFE_OK)) {
         return PFE_EINVAL;
     }
-    enc_put(&e, PFE_CSIG_IS_SPEED_SOURCE, in->speed_source.state, (int64_t)in->speed_source.value);
+    enc_put(&e, PFE_CSIG_IS_SPEED_SOURCE, in->speed_source.state,
+            raw_of_u64(PFE_CSIG_IS_SPEED_SOURCE, in->speed_source.value));
     enc_put(&e, PFE_CSIG_IS_GRADE_SOURCE_ADDRESS, in->grade_source_address.state,
-            (int64_t)in->grade_source_address.value);
+            raw_of_u64(PFE_CSIG_IS_GRADE_SOURCE_ADDRESS, in->grade_source_address.value));
     enc_put(&e, PFE_CSIG_IS_FUEL_RATE_SOURCE, in->fuel_rate_source.state,
-            (int64_t)in->fuel_rate_source.value);
-    enc_put(&e, PFE_CSIG_IS_SPEED_SENDERS, in->speed_senders.state, (int64_t)in->speed_senders.value);
-    enc_put(&e, PFE_CSIG_IS_GRADE_SENDERS, in->grade_senders.state, (int64_t)in->grade_senders.value);
-    enc_put(&e, PFE_CSIG_IS_GRADE_SOURCE, in->grade_source.state, (int64_t)in->grade_source.value);
-    enc_put(&e, PFE_CSIG_IS_MASS_SOURCE, in->mass_source.state, (int64_t)in->mass_source.value);
+            raw_of_u64(PFE_CSIG_IS_FUEL_RATE_SOURCE, in->fuel_rate_source.value));
+    enc_put(&e, PFE_CSIG_IS_SPEED_SENDERS, in->speed_senders.state,
+            raw_of_u64(PFE_CSIG_IS_SPEED_SENDERS, in->speed_senders.value));
+    enc_put(&e, PFE_CSIG_IS_GRADE_SENDERS, in->grade_senders.state,
+            raw_of_u64(PFE_CSIG_IS_GRADE_SENDERS, in->grade_senders.value));
+    enc_put(&e, PFE_CSIG_IS_GRADE_SOURCE, in->grade_source.state,
+            raw_of_u64(PFE_CSIG_IS_GRADE_SOURCE, in->grade_source.value));
+    enc_put(&e, PFE_CSIG_IS_MASS_SOURCE, in->mass_source.state,
+            raw_of_u64(PFE_CSIG_IS_MASS_SOURCE, in->mass_source.value));
     enc_put(&e, PFE_CSIG_IS_IDENTIFICATION_STATE, in->identification.state,
-            (int64_t)in->identification.value);
+            raw_of_u64(PFE_CSIG_IS_IDENTIFICATION_STATE, in->identification.value));
     enc_put(&e, PFE_CSIG_IS_VEHICLE_MASS, in->vehicle_mass_kg.state,
-            raw_of_unsigned(in->vehicle_mass_kg.value, 10U));
+            raw_of_u64(PFE_CSIG_IS_VEHICLE_MASS, in->vehicle_mass_kg.value));
     return enc_end(&e);
 }
 
@@ -1596,19 +1358,24 @@ int pfe_codec_encode_device_status(pfe_can_frame_t *frame, const pfe_msg_device_
         return PFE_EINVAL;
     }
     enc_put(&e, PFE_CSIG_DS_RX_FIFO_OVERRUNS, in->rx_fifo_overruns.state,
-            (int64_t)in->rx_fifo_overruns.value);
-    enc_put(&e, PFE_CSIG_DS_BUS_OFF_EVENTS, in->bus_off_events.state, (int64_t)in->bus_off_events.value);
-    enc_put(&e, PFE_CSIG_DS_ERROR_WARNING, in->error_warning.state, (int64_t)in->error_warning.value);
-    enc_put(&e, PFE_CSIG_DS_ERROR_PASSIVE, in->error_passive.state, (int64_t)in->error_passive.value);
-    enc_put(&e, PFE_CSIG_DS_BUS_OFF, in->bus_off.state, (int64_t)in->bus_off.value);
+            raw_of_u64(PFE_CSIG_DS_RX_FIFO_OVERRUNS, in->rx_fifo_overruns.value));
+    enc_put(&e, PFE_CSIG_DS_BUS_OFF_EVENTS, in->bus_off_events.state,
+            raw_of_u64(PFE_CSIG_DS_BUS_OFF_EVENTS, in->bus_off_events.value));
+    enc_put(&e, PFE_CSIG_DS_ERROR_WARNING, in->error_warning.state,
+            raw_of_u64(PFE_CSIG_DS_ERROR_WARNING, in->error_warning.value));
+    enc_put(&e, PFE_CSIG_DS_ERROR_PASSIVE, in->error_passive.state,
+            raw_of_u64(PFE_CSIG_DS_ERROR_PASSIVE, in->error_passive.value));
+    enc_put(&e, PFE_CSIG_DS_BUS_OFF, in->bus_off.state,
+            raw_of_u64(PFE_CSIG_DS_BUS_OFF, in->bus_off.value));
     enc_put(&e, PFE_CSIG_DS_NVM_WRITE_FAILING, in->nvm_write_failing.state,
-            (int64_t)in->nvm_write_failing.value);
-    enc_put(&e, PFE_CSIG_DS_RESET_CAUSE, in->reset_cause.state, (int64_t)in->reset_cause.value);
+            raw_of_u64(PFE_CSIG_DS_NVM_WRITE_FAILING, in->nvm_write_failing.value));
+    enc_put(&e, PFE_CSIG_DS_RESET_CAUSE, in->reset_cause.state,
+            raw_of_u64(PFE_CSIG_DS_RESET_CAUSE, in->reset_cause.value));
     enc_put(&e, PFE_CSIG_DS_TX_ERROR_COUNTER, in->tx_error_counter.state,
-            (int64_t)in->tx_error_counter.value);
+            raw_of_u64(PFE_CSIG_DS_TX_ERROR_COUNTER, in->tx_error_counter.value));
     enc_put(&e, PFE_CSIG_DS_RX_ERROR_COUNTER, in->rx_error_counter.state,
-            (int64_t)in->rx_error_counter.value);
+            raw_of_u64(PFE_CSIG_DS_RX_ERROR_COUNTER, in->rx_error_counter.value));
     enc_put(&e, PFE_CSIG_DS_NVM_WRITE_FAILURES, in->nvm_write_failures.state,
-            (int64_t)in->nvm_write_failures.value);
+            raw_of_u64(PFE_CSIG_DS_NVM_WRITE_FAILURES, in->nvm_write_failures.value));
     return enc_end(&e);
 }

@@ -2,10 +2,17 @@
  * pfe_codec.h - decode and encode of every J1939 frame the module reads or
  * sends, in firmware units.
  *
- * can_dbc/pfe.dbc is the definition of the frames; pfe_codec_signals[]
- * restates each of its signals (position, scale, offset, valid range) and the
- * codec reads and writes raw values through that table only. A host test
- * (tests/host/test_dbc_codec.c) checks the table against the DBC, both ways.
+ * can_dbc/pfe.dbc is the definition of the frames. pfe_codec_messages[]
+ * and pfe_codec_signals[] are generated from it at build time by
+ * sim_host/tools/dbc2c.c (build/gen/pfe_dbc.c; dbc2c --help): ids, PGNs,
+ * layouts, scales, offsets, ranges, units, periods and value states. The
+ * codec reads and writes raw values through that table only, and converts
+ * them to firmware units with the table's scale in the firmware unit
+ * (fw_num / fw_den, fw_offset): a scale, offset, range or unit changed in
+ * the DBC changes the conversions with no other edit
+ * (tests/codec_gen/codec_gen_test.sh). A host test
+ * (tests/host/test_dbc_codec.c) checks the tables against an independent
+ * reading of the DBC, both ways.
  *
  * Value states (J1939-71, docs/j1939.md). A decoded signal carries a
  * state next to its value:
@@ -157,7 +164,13 @@ const pfe_codec_message_t *pfe_codec_find_message(uint32_t id);
  *     phys = raw * scale_num / scale_den + offset_num / offset_den
  * both exact rationals; the offset does not depend on raw or on the scale.
  * raw_min, raw_max bound the valid raw values; the DBC's [min|max] is their
- * physical value.
+ * physical value. In the firmware's unit of the signal (the field it is
+ * decoded into: mm/s, udeg, ppm, nL/s, uL, ms, mm, kg, or a count):
+ *     value = raw * fw_num / fw_den + fw_offset
+ * exact (fw_offset a whole number of firmware units); decoders round the
+ * quotient to nearest (halves up), encoders invert it rounded to nearest.
+ * ranges is PFE_CODEC_RANGES_J1939 when the DBC's VAL_ names the signal's
+ * all-ones code NotAvailable.
  */
 typedef struct {
     const char *message;     /* DBC message name */
@@ -176,6 +189,10 @@ typedef struct {
     int32_t offset_den;      /* > 0 */
     uint32_t raw_min;
     uint32_t raw_max;
+    const char *unit;        /* DBC unit; "" in an image built with PFE_CODEC_NO_NAMES */
+    int32_t fw_num;          /* > 0 */
+    int32_t fw_den;          /* > 0 */
+    int32_t fw_offset;
 } pfe_codec_signal_t;
 
 /* Index of each signal in pfe_codec_signals[], message by message in DBC order. */

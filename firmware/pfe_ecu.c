@@ -6,9 +6,6 @@
 
 #include "pfe_fixed.h"
 
-#define CONFIG_PERIOD_US 1000000U  /* PFE_PlatoonConfig */
-#define TICKS_PER_100MS 10U
-#define TICKS_PER_1S 100U
 #define ARBITRARY_FIRST 128U       /* J1939 self-configurable address range */
 #define ARBITRARY_LAST 247U
 
@@ -25,25 +22,34 @@ enum {
     OUT_COUNT
 };
 
+/* Each output's message, with its period from the DBC (pfe_codec_messages[]),
+ * and its PGN for requests: the PGN macros, which the generated tables hold
+ * equal to the DBC's when they compile (sim_host/tools/dbc2c.c). */
+static const pfe_msg_index_t k_out_msg[OUT_COUNT] = {
+    PFE_MSG_LFE1,   PFE_MSG_PLATOON_FUEL, PFE_MSG_HRLFC,        PFE_MSG_FUEL_PREDICTION,
+    PFE_MSG_STATUS, PFE_MSG_OWN_FUEL,     PFE_MSG_INPUT_STATUS, PFE_MSG_DEVICE_STATUS};
 static const uint32_t k_out_pgn[OUT_COUNT] = {
     PFE_PGN_LFE1,     PFE_PGN_PLATOON_FUEL, PFE_PGN_HRLFC,        PFE_PGN_FUEL_PREDICTION,
     PFE_PGN_STATUS,   PFE_PGN_OWN_FUEL,     PFE_PGN_INPUT_STATUS, PFE_PGN_DEVICE_STATUS};
 
-#define PDU2_MASK (PFE_CAN_EFF_FLAG | 0x03FFFF00UL) /* EDP, DP, PF, PS */
-#define PDU1_MASK (PFE_CAN_EFF_FLAG | 0x03FF0000UL) /* EDP, DP, PF: any destination */
+/* A message's period (GenMsgCycleTime) in us; 0 for one sent on event or request. */
+static uint32_t period_us(pfe_msg_index_t msg)
+{
+    return (uint32_t)pfe_codec_messages[msg].cycle_ms * 1000U;
+}
 
-const pfe_ecu_filter_t pfe_ecu_rx_filters[PFE_ECU_RX_FILTERS] = {
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_CCVS1 << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_SSI << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_PLATOON_CONFIG << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_GRADE_PREVIEW << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_REQUEST << 8), PDU1_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_ADDRESS_CLAIMED << 8), PDU1_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_VDS << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_CVW << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_LFE1 << 8), PDU2_MASK},
-    {PFE_CAN_EFF_FLAG | (PFE_PGN_HRLFC << 8), PDU2_MASK},
-};
+/* Whether an output is due at this tick: every GenMsgCycleTime, in the
+ * phase-th tick of its period (the outputs are spread over ticks); never
+ * for a message without a period (sent on request only). */
+static bool out_due(uint32_t tick, uint32_t out, uint32_t phase)
+{
+    const uint32_t ticks = period_us(k_out_msg[out]) / PFE_ECU_TICK_US;
+    return (ticks != 0U) && ((tick % ticks) == (phase % ticks));
+}
+
+/* pfe_ecu_rx_filters[] is written from can_dbc/pfe.dbc at build time by
+ * sim_host/tools/dbc2c.c (build/gen/pfe_dbc.c): one filter per message whose
+ * PFEReceivedFrom is AnySourceAddress. */
 
 static void count_up(uint32_t *c, uint32_t n)
 {
@@ -937,7 +943,7 @@ static void age_inputs(pfe_ecu_t *ecu, uint64_t now_us)
             pfe_altgrade_reset(&ecu->altgrade);
         }
     }
-    age(&ecu->config, now_us, CONFIG_PERIOD_US);
+    age(&ecu->config, now_us, period_us(PFE_MSG_PLATOON_CONFIG));
     if ((ecu->config.state != PFE_SIG_VALID) && !ecu->degraded) {
         /* Keep the last platoon; say that it is no longer confirmed. */
         ecu->degraded = true;
@@ -1004,21 +1010,20 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
     }
     if (ecu->addr_state == PFE_ECU_ADDR_CLAIMED) {
         /* Schedule (can_dbc/pfe.dbc GenMsgCycleTime), spread over ticks. */
-        const uint32_t t100 = ecu->tick % TICKS_PER_100MS;
-        const uint32_t t1s = ecu->tick % TICKS_PER_1S;
+        const uint32_t t = ecu->tick;
         uint32_t due = ecu->request_pending;
-        due |= (t100 == 0U) ? (1U << (uint32_t)OUT_LFE1) : 0U;
-        due |= (t100 == 1U) ? (1U << (uint32_t)OUT_PLATOON_FUEL) : 0U;
-        due |= (t1s == 2U) ? (1U << (uint32_t)OUT_HRLFC) : 0U;
-        due |= (t1s == 3U) ? (1U << (uint32_t)OUT_PREDICTION) : 0U;
-        due |= (t1s == 4U) ? (1U << (uint32_t)OUT_STATUS) : 0U;
-        due |= (t100 == 2U) ? (1U << (uint32_t)OUT_OWN_FUEL) : 0U;
-        due |= (t1s == 5U) ? (1U << (uint32_t)OUT_INPUT_STATUS) : 0U;
-        due |= (t1s == 6U) ? (1U << (uint32_t)OUT_DEVICE_STATUS) : 0U;
-        if (!j1939_fuel_due(ecu, ecu->other_lfe1_seen, ecu->other_lfe1_us, 100000U)) {
+        due |= out_due(t, OUT_LFE1, 0U) ? (1U << (uint32_t)OUT_LFE1) : 0U;
+        due |= out_due(t, OUT_PLATOON_FUEL, 1U) ? (1U << (uint32_t)OUT_PLATOON_FUEL) : 0U;
+        due |= out_due(t, OUT_HRLFC, 2U) ? (1U << (uint32_t)OUT_HRLFC) : 0U;
+        due |= out_due(t, OUT_PREDICTION, 3U) ? (1U << (uint32_t)OUT_PREDICTION) : 0U;
+        due |= out_due(t, OUT_STATUS, 4U) ? (1U << (uint32_t)OUT_STATUS) : 0U;
+        due |= out_due(t, OUT_OWN_FUEL, 2U) ? (1U << (uint32_t)OUT_OWN_FUEL) : 0U;
+        due |= out_due(t, OUT_INPUT_STATUS, 5U) ? (1U << (uint32_t)OUT_INPUT_STATUS) : 0U;
+        due |= out_due(t, OUT_DEVICE_STATUS, 6U) ? (1U << (uint32_t)OUT_DEVICE_STATUS) : 0U;
+        if (!j1939_fuel_due(ecu, ecu->other_lfe1_seen, ecu->other_lfe1_us, period_us(PFE_MSG_LFE1))) {
             due &= ~(1U << (uint32_t)OUT_LFE1);
         }
-        if (!j1939_fuel_due(ecu, ecu->other_hrlfc_seen, ecu->other_hrlfc_us, 1000000U)) {
+        if (!j1939_fuel_due(ecu, ecu->other_hrlfc_seen, ecu->other_hrlfc_us, period_us(PFE_MSG_HRLFC))) {
             due &= ~(1U << (uint32_t)OUT_HRLFC);
         }
         for (uint32_t k = 0U; k < OUT_COUNT; k++) {

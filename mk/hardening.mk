@@ -66,7 +66,7 @@ MISRA_CHECK := python3 scripts/misra_check.py --deviations misra/deviations.txt
 MISRA_STM32_SRC = $(FW_SRC) hal/hal_ecu_loop.c hal/hal_can_mem.c $(STM32_MISRA_SRC)
 
 ## MISRA C:2012 on the Cortex-M4 code and the STM32 image (cppcheck's addon, misra/deviations.txt)
-misra: $(HARDEN_STAMP)
+misra: $(HARDEN_STAMP) $(FW_GEN_SRC)
 	@mkdir -p $(MISRA_OUT)
 	$(MISRA_CHECK) --build-dir $(MISRA_OUT)/cache -I. -Ifirmware $(MISRA_SRC)
 	@# The STM32F405 image apart (its sources: mk/stm32.mk), as its own

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lib/cli_help.h"
+#include "lib/out_file.h"
 
 /* The manual: --help prints it whole, a usage error its first lines. */
 static const char k_manual[] =
@@ -61,9 +62,22 @@ static const char *base_name(const char *path)
     return (slash != NULL) ? slash + 1 : path;
 }
 
-static int write_source(FILE *out, const char *name, const char *csv_path, size_t n,
-                        const int32_t *ppm, uint32_t spacing_mm)
+typedef struct {
+    const char *name;
+    const char *csv_path;
+    size_t n;
+    const int32_t *ppm;
+    uint32_t spacing_mm;
+} road_source_t;
+
+static int write_source(FILE *out, const void *ctx)
 {
+    const road_source_t *r = ctx;
+    const char *name = r->name;
+    const char *csv_path = r->csv_path;
+    const size_t n = r->n;
+    const int32_t *ppm = r->ppm;
+    const uint32_t spacing_mm = r->spacing_mm;
     int bad = 0;
     bad |= fprintf(out,
                    "/*\n"
@@ -137,29 +151,8 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    const size_t len = strlen(out_path);
-    char *tmp_path = malloc(len + sizeof ".tmp");
-    int rc = 1;
-    if (tmp_path == NULL) {
-        fprintf(stderr, "road2c: out of memory\n");
-    } else {
-        memcpy(tmp_path, out_path, len);
-        memcpy(tmp_path + len, ".tmp", sizeof ".tmp");
-        FILE *out = fopen(tmp_path, "wb");
-        if (out == NULL) {
-            perror(tmp_path);
-        } else {
-            int bad = write_source(out, name, csv_path, road.n_samples, ppm, spacing_mm) != 0;
-            bad |= fclose(out) != 0;
-            if (bad || rename(tmp_path, out_path) != 0) {
-                fprintf(stderr, "road2c: cannot write %s\n", out_path);
-                (void)remove(tmp_path);
-            } else {
-                rc = 0;
-            }
-        }
-        free(tmp_path);
-    }
+    const road_source_t src = {name, csv_path, road.n_samples, ppm, spacing_mm};
+    const int rc = (out_file_write(out_path, "road2c", write_source, &src) == 0) ? 0 : 1;
     free(ppm);
     road_profile_free(&road);
     return rc;

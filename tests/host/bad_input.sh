@@ -137,6 +137,9 @@ check "drivegen --out directory" 1 "$T/drivegen" --segment 100:0 --out "$W/in/di
 file_cases road2c "$T/road2c" flat -- "$O/road.c"
 check "road2c out directory" 1 "$T/road2c" flat "$FLAT" "$W/in/dir"
 
+file_cases dbc2c "$T/dbc2c" -- "$O/pfe_dbc.c"
+check "dbc2c out directory" 1 "$T/dbc2c" "$DBC" "$W/in/dir"
+
 check "roadgen unknown name" 1 "$T/roadgen" no-such-road
 check "roadgen --out directory" 1 "$T/roadgen" flat --out "$W/in/dir"
 check "routegen unknown name" 1 "$T/routegen" no-such-route

@@ -3,10 +3,13 @@
  *
  *   test_dbc_codec <path of pfe.dbc>
  *
- * Every signal of pfe_codec_signals[] must be in the DBC with the same
+ * The codec's tables are generated from the DBC (sim_host/tools/dbc2c.c);
+ * this test reads the DBC on its own and holds the tables to it. Every
+ * signal of pfe_codec_signals[] must be in the DBC with the same
  * message id, PGN, DLC, cycle time, start bit, length, byte order, sign,
- * scale, offset, [min|max] and SPN, and every DBC message and signal must be
- * in the codec's tables. Scales, offsets and limits are compared as exact
+ * scale, offset, [min|max], unit and SPN, and every DBC message and signal
+ * must be in the codec's tables; a signal with J1939 value states names its
+ * not-available and error codes in its VAL_. Scales, offsets and limits are compared as exact
  * fractions of the numbers written in the DBC, never as doubles. Then the
  * codec's bit placement and unit conversions are checked against an
  * independent reading of the DBC, the pitch-to-grade tangent against libm
@@ -191,12 +194,33 @@ static void check_signal(const pfe_codec_signal_t *s, const dbc_signal_t *d)
         fail_msg("%s.%s: SPN %ld in the DBC, %lu in the codec", s->message, s->name, (long)spn,
                  (unsigned long)s->spn);
     }
-    /* J1939 special ranges apply to whole bytes and 2-bit states only */
+    if (strcmp(s->unit, d->unit) != 0) {
+        fail_msg("%s.%s: unit \"%s\" in the DBC, \"%s\" in the codec", s->message, s->name, d->unit,
+                 s->unit);
+    }
+    /* J1939 special ranges apply to whole bytes and 2-bit states only, and
+     * the DBC names their codes for generic tools */
+    bool named_na = false;
+    bool named_error = false;
+    const uint64_t all_ones = (d->length >= 64U) ? UINT64_MAX : ((UINT64_C(1) << d->length) - 1U);
+    for (size_t k = 0U; k < d->n_values; k++) {
+        named_na = named_na || (((uint64_t)d->values[k].value == all_ones) &&
+                                (strcmp(d->values[k].text, "NotAvailable") == 0));
+        named_error = named_error ||
+                      (((uint64_t)d->values[k].value == (uint64_t)pfe_codec_raw_code(s, PFE_SIG_ERROR)) &&
+                       (strcmp(d->values[k].text, "Error") == 0));
+    }
     if (s->ranges == PFE_CODEC_RANGES_J1939) {
         if ((s->length != 2U) && ((s->length % 8U) != 0U)) {
             fail_msg("%s.%s: J1939 ranges on a %u-bit signal (2 bits or whole bytes only)",
                      s->message, s->name, (unsigned)s->length);
         }
+        if (!named_na || !named_error) {
+            fail_msg("%s.%s: J1939 value states, but VAL_ names not-available %s, error %s", s->message,
+                     s->name, named_na ? "yes" : "no", named_error ? "yes" : "no");
+        }
+    } else if (named_na) {
+        fail_msg("%s.%s: VAL_ NotAvailable, but no J1939 value states in the codec", s->message, s->name);
     }
 }
 
