@@ -125,9 +125,13 @@ const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_i
     est->out.fuel_rate_nl_s = pfe_fuel_rate_nl_s(force, v, pl->object.power_aux_w, pl->object.fuel_q20);
     est->fuel_used_10pl = accumulate(est->fuel_used_10pl, est->out.fuel_rate_nl_s, &flags);
 
+    /* Each position: what differs is its coefficients; v^2, a and the
+     * grade split are shared (v <= PFE_SPEED_MAX_MM_S and a within
+     * +-PFE_ACCEL_MAX_UM_S2, as the filter keeps them). */
+    const uint64_t v2 = (uint64_t)(uint32_t)v * (uint32_t)v;
     for (uint32_t i = 0U; i < pl->n_vehicles; i++) {
         const pfe_vehicle_t *veh = &pl->position[i];
-        const int32_t f = pfe_vehicle_fuel_force_n(veh, v, a, &est->trig);
+        const int32_t f = pfe_vehicle_truck_fuel_force_n(veh, v2, a, &est->trig);
         const uint32_t rate = pfe_fuel_rate_nl_s(f, v, veh->power_aux_w, veh->fuel_q20);
         est->out.pos_fuel_rate_nl_s[i] = rate;
         est->pos_fuel_used_10pl[i] = accumulate(est->pos_fuel_used_10pl[i], rate, &flags);
