@@ -131,6 +131,7 @@ int pfe_platoon_init_finish(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
     pl->mass_kg = (uint32_t)mass; /* <= 32 * 1e5 */
     pl->gravity_um_s2 = cfg->env->gravity_um_s2;
     pl->gravity_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)cfg->env->gravity_um_s2 << 26, POW5_6);
+    pl->roll_force_q32 = obj->roll_q32 * (int64_t)cfg->env->gravity_um_s2;
     pl->inv_mass_q30 = (int64_t)pfe_udiv_round_u64(1000000ULL << 30, mass);
     /* M [kg] * 20 m/s^2 * 4 <= 3.2e6 * 80 < 2^28 */
     pl->force_limit_q2 = (int32_t)mass * (PFE_ACCEL_MAX_UM_S2 / 1000000) * 4;

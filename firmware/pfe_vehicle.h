@@ -124,9 +124,10 @@ static inline uint32_t pfe_fuel_rate_nl_s(int32_t force_n, int32_t speed_mm_s,
      * 2^62. Inline: it runs for the platoon and every position every 10 ms. */
     const int64_t power_mw = ((int64_t)force_n * (int64_t)speed_mm_s) +
                              ((int64_t)power_aux_w * 1000);
-    const int64_t p = pfe_clamp_i64(power_mw, 0, (int64_t)1 << 40);
-    const int64_t rate = pfe_rshift_round(p * fuel_q20, 20U);
-    return (rate > (int64_t)UINT32_MAX) ? UINT32_MAX : (uint32_t)rate;
+    const uint64_t p = (uint64_t)pfe_clamp_i64(power_mw, 0, (int64_t)1 << 40);
+    /* p >= 0 and 0 < fuel_q20 < 2^22: an unsigned 64 x 32 bit product. */
+    const uint64_t rate = ((p * (uint32_t)fuel_q20) + ((uint64_t)1 << 19)) >> 20;
+    return (rate > (uint64_t)UINT32_MAX) ? UINT32_MAX : (uint32_t)rate;
 }
 
 #endif /* PFE_VEHICLE_H */

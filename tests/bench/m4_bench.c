@@ -669,7 +669,7 @@ static int bench_parts(void)
         pfe_grade_accel_t small;
         t0 = hal_mps2_icount_now();
         pfe_platoon_grade_accel(&s_platoon, in.grade_ppm, &small);
-        const int32_t fo = pfe_vehicle_fuel_force_n(obj, v, a, &small);
+        const int32_t fo = pfe_platoon_fuel_force_n(&s_platoon, v2, a, small.along_um_s2);
         const uint32_t rate_o = pfe_fuel_rate_nl_s(fo, v, obj->power_aux_w, obj->fuel_q20);
         t1 = hal_mps2_icount_now();
         object_total += part_insns(t0, t1);
