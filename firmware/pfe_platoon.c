@@ -1,6 +1,7 @@
 /* pfe_platoon.c - the platoon object model (contract in pfe_platoon.h). */
 #include "pfe_platoon.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "pfe_fixed.h"
@@ -37,6 +38,16 @@ static uint32_t weakest(const pfe_platoon_config_t *cfg, int use_power)
         }
     }
     return best;
+}
+
+/* Whether two positions' fuel rates are the same function of speed,
+ * acceleration and grade (every coefficient pfe_vehicle_truck_fuel_force_n()
+ * and pfe_fuel_rate_nl_s() read). */
+static bool same_fuel_model(const pfe_vehicle_t *a, const pfe_vehicle_t *b)
+{
+    return (a->air_q32 == b->air_q32) && (a->mass_q32 == b->mass_q32) &&
+           (a->mass_fuel_q32 == b->mass_fuel_q32) && (a->roll_q32 == b->roll_q32) &&
+           (a->fuel_q20 == b->fuel_q20) && (a->power_aux_w == b->power_aux_w);
 }
 
 int pfe_platoon_init_begin(const pfe_platoon_config_t *cfg)
@@ -105,6 +116,12 @@ int pfe_platoon_init_finish(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
         eta_sum += c->eta_ppm;
         brake += c->brake_max_n;
         aux += c->power_aux_w;
+    }
+    pl->same_as_previous = 0U;
+    for (uint32_t i = 1U; i < n; i++) {
+        if (same_fuel_model(&pl->position[i], &pl->position[i - 1U])) {
+            pl->same_as_previous |= 1U << i;
+        }
     }
     for (uint32_t i = n; i < PFE_MAX_VEHICLES; i++) {
         pl->position[i] = pl->position[0];

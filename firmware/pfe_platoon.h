@@ -69,6 +69,11 @@ typedef struct {
                                                   * cos alpha ~ 1), N * 2^32: object.roll_q32
                                                   * (< 2^31) times g (< 2^24), below 2^55;
                                                   * set once here, not in every step */
+    uint32_t same_as_previous;                   /* bit i (1 .. n - 1): position i has
+                                                  * position i - 1's air, masses, rolling,
+                                                  * fuel and auxiliary coefficients, so its
+                                                  * fuel rate is the same (the estimator
+                                                  * computes it once) */
     pfe_vehicle_t object;                        /* the platoon as one point mass */
     pfe_vehicle_t position[PFE_MAX_VEHICLES];    /* each truck at its position */
 } pfe_platoon_t;
