@@ -41,7 +41,15 @@
  *   ecu_real_bus_inputs_mean / _max  what a steady tick spends on a truck's
  *                             bus on sender arbitration, plausibility and
  *                             identification (two senders of CCVS1 and LFE1)
+ *   est_step_per_truck        each truck beyond the fifth: the n32 and n5
+ *                             totals' difference over 27 trucks and the ticks
  *   stack_used                deepest stack seen (painted-stack method)
+ * After the results digest (so that it compares with earlier builds):
+ *   est_step_n1_mean / _max   the estimator step with one truck
+ *   est_step_n5_mixed_mean / _max  five trucks of different masses, so that
+ *                             no position reuses the one before it's rate
+ *   part_*                    the steps' parts timed alone (docs/bench.md,
+ *                             the floor analysis), with a digest of their own
  * Means are over many steps, so their resolution is far below the 40
  * instructions of one reading; a max is a single reading (+-40).
  */
