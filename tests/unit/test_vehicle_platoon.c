@@ -180,6 +180,9 @@ static void test_platoon_aggregates(void **state)
     assert_int_equal(pl.position[0].reduction_bp, 800);
     assert_int_equal(pl.position[1].reduction_bp, 3100);
     assert_int_equal(pl.position[4].reduction_bp, 3500);
+    /* The third truck's reduction holds for every one behind it: the fourth
+     * and fifth have the third's fuel model; the first three differ. */
+    assert_int_equal(pl.same_as_previous, (1U << 3) | (1U << 4));
     /* eq. 4.6: 2418.75 N * (0.92 + 0.69 + 3 * 0.65) = 8610.75 N at 25 m/s. */
     assert_in_range(pfe_vehicle_air_n(&pl.object, 25000), 8610, 8611);
     /* eq. 4.8 and 4.10, small angle: 5 * 2746.8 N + 200 t * 9.81 * 0.02. */
@@ -233,6 +236,33 @@ static void test_platoon_takes_weakest_power_to_mass(void **state)
     assert_int_equal(pl.object.power_max_w, 500000); /* 5 W/kg * 100 t */
     /* eta_mean = (0.4 + 0.4 + 0.3) / 3: 10^9 * 2^20 / (0.366667e6 * 35800) = 79881.4 */
     assert_in_range(pl.object.fuel_q20, 79881 - 1, 79881 + 1);
+}
+
+/* A position reuses the fuel rate of the one before it only when every
+ * coefficient of the fuel model is the same: an efficiency of its own
+ * breaks the chain, a power limit of its own (not in the fuel model) does
+ * not. */
+static void test_platoon_marks_repeated_fuel_models(void **state)
+{
+    (void)state;
+    pfe_vehicle_calib_t thrifty = pfe_default_vehicle;
+    thrifty.eta_ppm = 420000U;
+    pfe_vehicle_calib_t strong = pfe_default_vehicle;
+    strong.power_max_w = 400000U;
+    pfe_platoon_config_t cfg;
+    pfe_platoon_config_uniform(&cfg, 6U, 10000U, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    cfg.vehicle[3] = &thrifty;
+    cfg.vehicle[5] = &strong;
+    pfe_platoon_t pl;
+    memset(&pl, 0xA5, sizeof pl);
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    assert_int_equal(pl.same_as_previous, 1U << 5);
+    /* One truck: no position repeats another. */
+    pfe_platoon_config_uniform(&cfg, 1U, 10000U, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    assert_int_equal(pl.same_as_previous, 0U);
 }
 
 static void test_platoon_rejects_bad_configuration(void **state)
@@ -312,6 +342,7 @@ int main(void)
         cmocka_unit_test(test_step_forms_match_the_general_forces),
         cmocka_unit_test(test_platoon_aggregates),
         cmocka_unit_test(test_platoon_takes_weakest_power_to_mass),
+        cmocka_unit_test(test_platoon_marks_repeated_fuel_models),
         cmocka_unit_test(test_platoon_rejects_bad_configuration),
         cmocka_unit_test(test_platoon_init_in_pieces),
     };
