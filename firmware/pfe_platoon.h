@@ -149,7 +149,7 @@ static inline int32_t pfe_platoon_fuel_force_n(const pfe_platoon_t *pl, uint64_t
     const pfe_vehicle_t *obj = &pl->object;
     const int64_t sum = (obj->mass_fuel_q32 * accel_um_s2) + pl->roll_force_q32 +
                         (obj->mass_q32 * along_um_s2) + (obj->air_q32 * (int64_t)v2);
-    return (int32_t)((sum + 2147483648LL) >> 32);
+    return (int32_t)pfe_rshift_round(sum, 32U);
 }
 
 /* Platoon acceleration for a net force in N * 2^2, eq. 4.3: a = F / M in

@@ -46,7 +46,10 @@ int pfe_vehicle_init(pfe_vehicle_t *veh, const pfe_vehicle_calib_t *calib,
  * the shifted sum (the same value as narrowing the full result). */
 static inline int32_t mul_q_i32(int32_t a, int32_t b, uint32_t shift)
 {
-    const uint64_t sum = (uint64_t)((int64_t)a * b) + ((uint64_t)1 << (shift - 1U));
+    const int64_t product = (int64_t)a * b;
+    const uint32_t half_bit = shift - 1U;
+    const uint64_t half = (uint64_t)1 << half_bit;
+    const uint64_t sum = (uint64_t)product + half;
     return (int32_t)(uint32_t)(sum >> shift);
 }
 
@@ -66,8 +69,9 @@ void pfe_grade_accel(int32_t grade_ppm, uint32_t gravity_um_s2, pfe_grade_accel_
      * 3 x^2 < 2^58, so 3 x^2 / 2^33 < 2^25. y stays within 2^30 (1 + 1e-8),
      * so y^2 and s y^2 are below 2^31, and 3 - s y^2, within 2^31 (1 +- 0.02),
      * fits 32 bits unsigned: y times it is below 2^62. */
-    const int64_t x2 = (int64_t)x * x;
-    int32_t y = one_q30 - (x / 2) + (int32_t)(uint32_t)(((uint64_t)(3 * x2) + ((uint64_t)1 << 32)) >> 33);
+    const int64_t x2_3 = 3 * ((int64_t)x * x);
+    const uint64_t x2_3_round = (uint64_t)x2_3 + ((uint64_t)1 << 32);
+    int32_t y = one_q30 - (x / 2) + (int32_t)(uint32_t)(x2_3_round >> 33);
     for (uint32_t k = 0U; k < 2U; k++) {
         const int32_t y2 = mul_q_i32(y, y, 30U);
         const int32_t sy2 = mul_q_i32(s, y2, 30U);

@@ -28,6 +28,7 @@
 #include "pfe_fixed.h"
 
 #define PFE_ACCEL_MAX_UM_S2 20000000 /* 20 m/s^2, beyond any truck */
+#define PFE_FUEL_POWER_MAX_MW 1099511627776LL /* 2^40 mW: pfe_fuel_rate_nl_s() clamps to it */
 
 /* Coefficients of one vehicle at one platoon position. Q32 mass-like
  * coefficients hold kg * 2^32 / 10^6, so (coef * accel_um_s2) >> 32 is N. */
@@ -95,11 +96,11 @@ static inline int32_t pfe_vehicle_truck_fuel_force_n(const pfe_vehicle_t *veh, u
                                                      int32_t accel_um_s2,
                                                      const pfe_grade_accel_t *grade)
 {
+    const uint64_t air = (uint64_t)(uint32_t)veh->air_q32 * v2;
     const int64_t sum = ((int64_t)(int32_t)veh->mass_fuel_q32 * accel_um_s2) +
                         ((int64_t)(int32_t)veh->roll_q32 * grade->normal_um_s2) +
-                        ((int64_t)(int32_t)veh->mass_q32 * grade->along_um_s2) +
-                        (int64_t)((uint64_t)(uint32_t)veh->air_q32 * v2);
-    return (int32_t)((sum + 2147483648LL) >> 32);
+                        ((int64_t)(int32_t)veh->mass_q32 * grade->along_um_s2) + (int64_t)air;
+    return (int32_t)pfe_rshift_round(sum, 32U);
 }
 
 /*
@@ -124,7 +125,7 @@ static inline uint32_t pfe_fuel_rate_nl_s(int32_t force_n, int32_t speed_mm_s,
      * 2^62. Inline: it runs for the platoon and every position every 10 ms. */
     const int64_t power_mw = ((int64_t)force_n * (int64_t)speed_mm_s) +
                              ((int64_t)power_aux_w * 1000);
-    const uint64_t p = (uint64_t)pfe_clamp_i64(power_mw, 0, (int64_t)1 << 40);
+    const uint64_t p = (uint64_t)pfe_clamp_i64(power_mw, 0, PFE_FUEL_POWER_MAX_MW);
     /* p >= 0 and 0 < fuel_q20 < 2^22: an unsigned 64 x 32 bit product. */
     const uint64_t rate = ((p * (uint32_t)fuel_q20) + ((uint64_t)1 << 19)) >> 20;
     return (rate > (uint64_t)UINT32_MAX) ? UINT32_MAX : (uint32_t)rate;
