@@ -118,22 +118,36 @@ const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_i
         est->trig_grade_ppm = grade;
     }
 
+    /* v <= PFE_SPEED_MAX_MM_S and a within +-PFE_ACCEL_MAX_UM_S2, as the
+     * filter keeps them: what the inline forces below require. */
+    const uint64_t v2 = (uint64_t)(uint32_t)v * (uint32_t)v;
     pfe_grade_accel_t small;
     pfe_platoon_grade_accel(pl, grade, &small);
-    const int32_t force = pfe_vehicle_fuel_force_n(&pl->object, v, a, &small);
+    const int32_t force = pfe_platoon_fuel_force_n(pl, v2, a, small.along_um_s2);
     est->out.wheel_force_n = force;
     est->out.fuel_rate_nl_s = pfe_fuel_rate_nl_s(force, v, pl->object.power_aux_w, pl->object.fuel_q20);
     est->fuel_used_10pl = accumulate(est->fuel_used_10pl, est->out.fuel_rate_nl_s, &flags);
 
-    for (uint32_t i = 0U; i < pl->n_vehicles; i++) {
-        const pfe_vehicle_t *veh = &pl->position[i];
-        const int32_t f = pfe_vehicle_fuel_force_n(veh, v, a, &est->trig);
-        const uint32_t rate = pfe_fuel_rate_nl_s(f, v, veh->power_aux_w, veh->fuel_q20);
+    /* Each position: what differs is its coefficients; v^2, a and the
+     * grade split are shared, and a position with the coefficients of the
+     * one before it (pfe_platoon_t.same_as_previous) has its fuel rate. */
+    /* In locals: the stores below could otherwise alias them. */
+    const pfe_grade_accel_t trig = est->trig;
+    const uint32_t n = pl->n_vehicles;
+    uint32_t twins = pl->same_as_previous;
+    uint32_t rate = 0U;
+    for (uint32_t i = 0U; i < n; i++) {
+        if ((twins & 1U) == 0U) {
+            const pfe_vehicle_t *veh = &pl->position[i];
+            const int32_t f = pfe_vehicle_truck_fuel_force_n(veh, v2, a, &trig);
+            rate = pfe_fuel_rate_nl_s(f, v, veh->power_aux_w, veh->fuel_q20);
+            if (rate == UINT32_MAX) {
+                flags |= PFE_EST_SATURATED;
+            }
+        }
+        twins >>= 1;
         est->out.pos_fuel_rate_nl_s[i] = rate;
         est->pos_fuel_used_10pl[i] = accumulate(est->pos_fuel_used_10pl[i], rate, &flags);
-        if (rate == UINT32_MAX) {
-            flags |= PFE_EST_SATURATED;
-        }
     }
     if (est->out.fuel_rate_nl_s == UINT32_MAX) {
         flags |= PFE_EST_SATURATED;

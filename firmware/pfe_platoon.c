@@ -1,6 +1,7 @@
 /* pfe_platoon.c - the platoon object model (contract in pfe_platoon.h). */
 #include "pfe_platoon.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "pfe_fixed.h"
@@ -37,6 +38,16 @@ static uint32_t weakest(const pfe_platoon_config_t *cfg, int use_power)
         }
     }
     return best;
+}
+
+/* Whether two positions' fuel rates are the same function of speed,
+ * acceleration and grade (every coefficient pfe_vehicle_truck_fuel_force_n()
+ * and pfe_fuel_rate_nl_s() read). */
+static bool same_fuel_model(const pfe_vehicle_t *a, const pfe_vehicle_t *b)
+{
+    return (a->air_q32 == b->air_q32) && (a->mass_q32 == b->mass_q32) &&
+           (a->mass_fuel_q32 == b->mass_fuel_q32) && (a->roll_q32 == b->roll_q32) &&
+           (a->fuel_q20 == b->fuel_q20) && (a->power_aux_w == b->power_aux_w);
 }
 
 int pfe_platoon_init_begin(const pfe_platoon_config_t *cfg)
@@ -106,6 +117,12 @@ int pfe_platoon_init_finish(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
         brake += c->brake_max_n;
         aux += c->power_aux_w;
     }
+    pl->same_as_previous = 0U;
+    for (uint32_t i = 1U; i < n; i++) {
+        if (same_fuel_model(&pl->position[i], &pl->position[i - 1U])) {
+            pl->same_as_previous |= 1U << i;
+        }
+    }
     for (uint32_t i = n; i < PFE_MAX_VEHICLES; i++) {
         pl->position[i] = pl->position[0];
         pl->position[i].power_aux_w = 0U;
@@ -131,6 +148,7 @@ int pfe_platoon_init_finish(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
     pl->mass_kg = (uint32_t)mass; /* <= 32 * 1e5 */
     pl->gravity_um_s2 = cfg->env->gravity_um_s2;
     pl->gravity_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)cfg->env->gravity_um_s2 << 26, POW5_6);
+    pl->roll_force_q32 = obj->roll_q32 * (int64_t)cfg->env->gravity_um_s2;
     pl->inv_mass_q30 = (int64_t)pfe_udiv_round_u64(1000000ULL << 30, mass);
     /* M [kg] * 20 m/s^2 * 4 <= 3.2e6 * 80 < 2^28 */
     pl->force_limit_q2 = (int32_t)mass * (PFE_ACCEL_MAX_UM_S2 / 1000000) * 4;

@@ -65,6 +65,15 @@ typedef struct {
     int32_t force_limit_q2;                      /* M * PFE_ACCEL_MAX_UM_S2, N * 2^2 */
     uint32_t formation_air_q32;                  /* c above, N per (mm/s)^2 * 2^32,
                                                   * <= PFE_FORMATION_AIR_MAX_Q32 */
+    int64_t roll_force_q32;                      /* cr M g of the object model (eq. 4.8,
+                                                  * cos alpha ~ 1), N * 2^32: object.roll_q32
+                                                  * (< 2^31) times g (< 2^24), below 2^55;
+                                                  * set once here, not in every step */
+    uint32_t same_as_previous;                   /* bit i (1 .. n - 1): position i has
+                                                  * position i - 1's air, masses, rolling,
+                                                  * fuel and auxiliary coefficients, so its
+                                                  * fuel rate is the same (the estimator
+                                                  * computes it once) */
     pfe_vehicle_t object;                        /* the platoon as one point mass */
     pfe_vehicle_t position[PFE_MAX_VEHICLES];    /* each truck at its position */
 } pfe_platoon_t;
@@ -123,6 +132,25 @@ int32_t pfe_platoon_force_max_n(const pfe_platoon_t *pl, int32_t speed_mm_s);
 /* Small-angle gravity of the object model (eq. 4.8, 4.10): along = g * grade,
  * normal = g. grade_ppm is clamped to +-PFE_GRADE_MAX_PPM. */
 void pfe_platoon_grade_accel(const pfe_platoon_t *pl, int32_t grade_ppm, pfe_grade_accel_t *out);
+
+/*
+ * Fw of the object model, eq. 3.7 with 4.6 to 4.10 (small-angle grade):
+ * the same result as pfe_vehicle_fuel_force_n() for the object with the
+ * gravity split of pfe_platoon_grade_accel() (along_um_s2 from there), for
+ * a caller that holds v2 = v * v, v in [0, PFE_SPEED_MAX_MM_S], and an
+ * acceleration already within +-PFE_ACCEL_MAX_UM_S2. Its rolling part is
+ * roll_force_q32, made at configuration time. One sum below 2^60
+ * (pfe_vehicle.c), rounded once: its rounded high word is the force.
+ * Inline: the estimator calls it every 10 ms.
+ */
+static inline int32_t pfe_platoon_fuel_force_n(const pfe_platoon_t *pl, uint64_t v2,
+                                               int32_t accel_um_s2, int32_t along_um_s2)
+{
+    const pfe_vehicle_t *obj = &pl->object;
+    const int64_t sum = (obj->mass_fuel_q32 * accel_um_s2) + pl->roll_force_q32 +
+                        (obj->mass_q32 * along_um_s2) + (obj->air_q32 * (int64_t)v2);
+    return (int32_t)pfe_rshift_round(sum, 32U);
+}
 
 /* Platoon acceleration for a net force in N * 2^2, eq. 4.3: a = F / M in
  * um/s^2, rounded; the force is first clamped to M * PFE_ACCEL_MAX_UM_S2, so

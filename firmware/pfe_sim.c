@@ -192,9 +192,12 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
          * Fw' [N * 2^2] <= 2^27 times ds * fuel_q20 (< 2^14 * 2^22) is below
          * 2^63; aux_fuel_q8 < 2^41 times dt <= 2^20 below 2^61. */
         const int32_t f = (fuel_force_q2 < FUEL_FORCE_MAX_Q2) ? fuel_force_q2 : FUEL_FORCE_MAX_Q2;
-        const int64_t work_coef = (int64_t)ds * obj->fuel_q20;
+        const uint64_t work_coef_u = (uint64_t)ds * (uint32_t)obj->fuel_q20;
+        const int64_t work_coef = (int64_t)work_coef_u;
         const int64_t work_nl = pfe_rshift_round((int64_t)f * work_coef, 22U);
-        const int64_t aux_nl = pfe_rshift_round(sim->aux_fuel_q8 * (int64_t)dt_q16, 24U);
+        /* aux_fuel_q8 >= 0: an unsigned 64 x 32 bit product. */
+        const int64_t aux_nl =
+            (int64_t)((((uint64_t)sim->aux_fuel_q8 * dt_q16) + ((uint64_t)1 << 23)) >> 24);
         const int64_t step_nl = work_nl + aux_nl;
         fuel_step = (uint64_t)step_nl;
         if (with_sums) {

@@ -41,28 +41,48 @@ int pfe_vehicle_init(pfe_vehicle_t *veh, const pfe_vehicle_calib_t *calib,
     return PFE_OK;
 }
 
+/* (a * b) / 2^shift rounded to nearest as pfe_mul_q(), for a caller whose
+ * result fits 32 bits: one 32 x 32 -> 64 bit multiply and the low word of
+ * the shifted sum (the same value as narrowing the full result). */
+static inline int32_t mul_q_i32(int32_t a, int32_t b, uint32_t shift)
+{
+    const int64_t product = (int64_t)a * b;
+    const uint32_t half_bit = shift - 1U;
+    const uint64_t half = (uint64_t)1 << half_bit;
+    const uint64_t sum = (uint64_t)product + half;
+    return (int32_t)(uint32_t)(sum >> shift);
+}
+
 void pfe_grade_accel(int32_t grade_ppm, uint32_t gravity_um_s2, pfe_grade_accel_t *out)
 {
-    const int64_t one_q30 = (int64_t)1 << 30;
+    /* Every operand and result below fits 32 bits (the bounds beside each),
+     * so each product is one 32 x 32 -> 64 bit multiply. */
+    const int32_t one_q30 = (int32_t)1 << 30;
     const int32_t grade = pfe_clamp_i32(grade_ppm, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM);
     /* grade * 2^30 / 10^6 = grade * round(2^50 / 10^6) / 2^20; |grade| <= 5e5
      * keeps the product below 2^50 and the result below 2^29.1. */
-    const int64_t g_q30 = pfe_rshift_round((int64_t)grade * 1125899907LL, 20U);
-    const int64_t x = pfe_rshift_round(g_q30 * g_q30, 30U);      /* grade^2 <= 0.25 */
-    const int64_t s = one_q30 + x;                               /* 1 + grade^2 */
+    const int32_t g_q30 = mul_q_i32(grade, 1125899907, 20U);
+    const int32_t x = mul_q_i32(g_q30, g_q30, 30U); /* grade^2 <= 0.25: <= 2^28 */
+    const int32_t s = one_q30 + x;                /* 1 + grade^2 < 2^30.4 */
     /* 1/sqrt(1 + x) ~ 1 - x/2 + 3x^2/8 (error <= 5e-3 at x = 0.25), then two
-     * Newton steps y <- y (3 - s y^2) / 2, each squaring the relative error. */
-    int64_t y = one_q30 - (x / 2) + pfe_rshift_round(3 * x * x, 33U);
+     * Newton steps y <- y (3 - s y^2) / 2, each squaring the relative error.
+     * 3 x^2 < 2^58, so 3 x^2 / 2^33 < 2^25. y stays within 2^30 (1 + 1e-8),
+     * so y^2 and s y^2 are below 2^31, and 3 - s y^2, within 2^31 (1 +- 0.02),
+     * fits 32 bits unsigned: y times it is below 2^62. */
+    const int64_t x2_3 = 3 * ((int64_t)x * x);
+    const uint64_t x2_3_round = (uint64_t)x2_3 + ((uint64_t)1 << 32);
+    int32_t y = one_q30 - (x / 2) + (int32_t)(uint32_t)(x2_3_round >> 33);
     for (uint32_t k = 0U; k < 2U; k++) {
-        const int64_t y2 = pfe_rshift_round(y * y, 30U);
-        const int64_t sy2 = pfe_rshift_round(s * y2, 30U);
-        /* y <= 2^30 and 3 - s y^2 < 2^32: product below 2^62. */
-        y = pfe_rshift_round(y * ((3 * one_q30) - sy2), 31U);
+        const int32_t y2 = mul_q_i32(y, y, 30U);
+        const int32_t sy2 = mul_q_i32(s, y2, 30U);
+        const uint32_t t = (3U * (uint32_t)one_q30) - (uint32_t)sy2;
+        const uint64_t yt = ((uint64_t)(uint32_t)y * t) + ((uint64_t)1 << 30);
+        y = (int32_t)(uint32_t)(yt >> 31);
     }
-    const int64_t sin_q30 = pfe_rshift_round(g_q30 * y, 30U);
+    const int32_t sin_q30 = mul_q_i32(g_q30, y, 30U);
     /* g < 2^24 and |sin|, cos <= 2^30: products below 2^54. */
-    out->normal_um_s2 = (int32_t)pfe_rshift_round((int64_t)gravity_um_s2 * y, 30U);
-    out->along_um_s2 = (int32_t)pfe_rshift_round((int64_t)gravity_um_s2 * sin_q30, 30U);
+    out->normal_um_s2 = mul_q_i32((int32_t)gravity_um_s2, y, 30U);
+    out->along_um_s2 = mul_q_i32((int32_t)gravity_um_s2, sin_q30, 30U);
 }
 
 int32_t pfe_vehicle_air_n(const pfe_vehicle_t *veh, int32_t speed_mm_s)
@@ -116,19 +136,4 @@ int32_t pfe_wheel_force_max_n(uint32_t power_max_w, uint32_t traction_max_n, int
     const uint32_t rest_n = (r * 1000U) / v;
     const uint64_t force = ((uint64_t)q * 1000U) + (uint64_t)rest_n;
     return (force < (uint64_t)cap) ? (int32_t)force : (int32_t)cap;
-}
-
-uint32_t pfe_fuel_rate_nl_s(int32_t force_n, int32_t speed_mm_s, uint32_t power_aux_w,
-                            int64_t fuel_q20)
-{
-    if (force_n <= 0) {
-        return 0U; /* eq. 3.9: fuel cut */
-    }
-    /* N * mm/s = mW; <= 2^31 * 2^17 = 2^48, so add Paux and clamp to 2^40 mW
-     * (1.1 GW) before scaling: with fuel_q20 < 2^22 the product stays below 2^62. */
-    const int64_t power_mw = ((int64_t)force_n * (int64_t)speed_mm_s) +
-                             ((int64_t)power_aux_w * 1000);
-    const int64_t p = pfe_clamp_i64(power_mw, 0, (int64_t)1 << 40);
-    const int64_t rate = pfe_rshift_round(p * fuel_q20, 20U);
-    return (rate > (int64_t)UINT32_MAX) ? UINT32_MAX : (uint32_t)rate;
 }

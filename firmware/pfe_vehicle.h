@@ -25,8 +25,10 @@
 #include <stdint.h>
 
 #include "pfe_calib.h"
+#include "pfe_fixed.h"
 
 #define PFE_ACCEL_MAX_UM_S2 20000000 /* 20 m/s^2, beyond any truck */
+#define PFE_FUEL_POWER_MAX_MW 1099511627776LL /* 2^40 mW: pfe_fuel_rate_nl_s() clamps to it */
 
 /* Coefficients of one vehicle at one platoon position. Q32 mass-like
  * coefficients hold kg * 2^32 / 10^6, so (coef * accel_um_s2) >> 32 is N. */
@@ -79,6 +81,29 @@ int32_t pfe_vehicle_fuel_force_n(const pfe_vehicle_t *veh, int32_t speed_mm_s,
                                  int32_t accel_um_s2, const pfe_grade_accel_t *grade);
 
 /*
+ * pfe_vehicle_fuel_force_n() for one truck (coefficients from
+ * pfe_vehicle_init(), not a platoon's sums), for a caller that holds
+ * v2 = v * v with v in [0, PFE_SPEED_MAX_MM_S] and an acceleration already
+ * within +-PFE_ACCEL_MAX_UM_S2: the same result, at less cost. One truck's
+ * coefficients fit 32 bits (air_q32 < 2^17, mass_q32 and mass_fuel_q32 <
+ * 2^30, roll_q32 < 2^26: pfe_vehicle.c), so each product is a single
+ * 32 x 32 -> 64 bit multiply (air_q32 times v2 < 2^33: one multiply and one
+ * multiply-accumulate). The sum stays below 2^60 (pfe_vehicle.c); its
+ * rounded high word is the force, so no saturation is needed. Inline: the
+ * estimator calls it for every position every 10 ms.
+ */
+static inline int32_t pfe_vehicle_truck_fuel_force_n(const pfe_vehicle_t *veh, uint64_t v2,
+                                                     int32_t accel_um_s2,
+                                                     const pfe_grade_accel_t *grade)
+{
+    const uint64_t air = (uint64_t)(uint32_t)veh->air_q32 * v2;
+    const int64_t sum = ((int64_t)(int32_t)veh->mass_fuel_q32 * accel_um_s2) +
+                        ((int64_t)(int32_t)veh->roll_q32 * grade->normal_um_s2) +
+                        ((int64_t)(int32_t)veh->mass_q32 * grade->along_um_s2) + (int64_t)air;
+    return (int32_t)pfe_rshift_round(sum, 32U);
+}
+
+/*
  * Largest wheel force: min(Pmax / v, traction_max) in N, Pmax / v rounded
  * down; at v = 0 the traction limit. Uses two 32-bit divisions.
  */
@@ -89,7 +114,21 @@ int32_t pfe_wheel_force_max_n(uint32_t power_max_w, uint32_t traction_max_n, int
  * (force_n * v + Paux) / (eta rho_d), in nL/s, rounded, saturating at
  * UINT32_MAX (4.29 L/s). fuel_q20 comes from pfe_vehicle_t.
  */
-uint32_t pfe_fuel_rate_nl_s(int32_t force_n, int32_t speed_mm_s, uint32_t power_aux_w,
-                            int64_t fuel_q20);
+static inline uint32_t pfe_fuel_rate_nl_s(int32_t force_n, int32_t speed_mm_s,
+                                          uint32_t power_aux_w, int64_t fuel_q20)
+{
+    if (force_n <= 0) {
+        return 0U; /* eq. 3.9: fuel cut */
+    }
+    /* N * mm/s = mW; <= 2^31 * 2^17 = 2^48, so add Paux and clamp to 2^40 mW
+     * (1.1 GW) before scaling: with fuel_q20 < 2^22 the product stays below
+     * 2^62. Inline: it runs for the platoon and every position every 10 ms. */
+    const int64_t power_mw = ((int64_t)force_n * (int64_t)speed_mm_s) +
+                             ((int64_t)power_aux_w * 1000);
+    const uint64_t p = (uint64_t)pfe_clamp_i64(power_mw, 0, PFE_FUEL_POWER_MAX_MW);
+    /* p >= 0 and 0 < fuel_q20 < 2^22: an unsigned 64 x 32 bit product. */
+    const uint64_t rate = ((p * (uint32_t)fuel_q20) + ((uint64_t)1 << 19)) >> 20;
+    return (rate > (uint64_t)UINT32_MAX) ? UINT32_MAX : (uint32_t)rate;
+}
 
 #endif /* PFE_VEHICLE_H */

@@ -41,10 +41,19 @@
  *   ecu_real_bus_inputs_mean / _max  what a steady tick spends on a truck's
  *                             bus on sender arbitration, plausibility and
  *                             identification (two senders of CCVS1 and LFE1)
+ *   est_step_per_truck        each truck beyond the fifth: the n32 and n5
+ *                             totals' difference over 27 trucks and the ticks
  *   stack_used                deepest stack seen (painted-stack method)
+ * After the results digest (so that it compares with earlier builds):
+ *   est_step_n1_mean / _max   the estimator step with one truck
+ *   est_step_n5_mixed_mean / _max  five trucks of different masses, so that
+ *                             no position reuses the one before it's rate
+ *   part_*                    the steps' parts timed alone (docs/bench.md,
+ *                             the floor analysis), with a digest of their own
  * Means are over many steps, so their resolution is far below the 40
  * instructions of one reading; a max is a single reading (+-40).
  */
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -82,11 +91,21 @@ static void sink(uint64_t value)
 static pfe_platoon_t s_platoon;
 static pfe_estimator_t s_est;
 
+/* Trucks of different masses, for a platoon in which no position has the
+ * fuel model of the one before it (est_step_n5_mixed). */
+static pfe_vehicle_calib_t s_mixed[PFE_MAX_VEHICLES];
+static bool s_use_mixed;
+
 static int setup(uint32_t n)
 {
     pfe_platoon_config_t cfg;
     pfe_platoon_config_uniform(&cfg, n, 10000U, &pfe_default_vehicle, &pfe_default_env,
                                &pfe_default_drag);
+    for (uint32_t i = 0U; s_use_mixed && (i < n); i++) {
+        s_mixed[i] = pfe_default_vehicle;
+        s_mixed[i].mass_kg = 40000U - (1000U * i);
+        cfg.vehicle[i] = &s_mixed[i];
+    }
     if ((pfe_platoon_init(&s_platoon, &cfg) != PFE_OK) ||
         (pfe_estimator_init(&s_est, &s_platoon) != PFE_OK)) {
         return -1;
@@ -105,6 +124,10 @@ static pfe_est_input_t drive_input(uint32_t tick)
                                 (tick % 10U) == 0U, grade, true};
     return in;
 }
+
+/* The total instructions of the last bench_estimator() run, for the
+ * per-truck increment (est_step_per_truck). */
+static uint64_t s_est_total;
 
 static int bench_estimator(uint32_t n, const char *mean_name, const char *max_name)
 {
@@ -136,6 +159,7 @@ static int bench_estimator(uint32_t n, const char *mean_name, const char *max_na
         worst = (insns > worst) ? insns : worst;
     }
     sink(pfe_estimator_fuel_used_ul(&s_est, PFE_EST_PLATOON));
+    s_est_total = total;
     hal_mps2_write_bench(mean_name, total / MEASURED_TICKS, "insn");
     hal_mps2_write_bench(max_name, worst, "insn");
     return 0;
@@ -613,19 +637,126 @@ static int bench_burst(void)
     return 0;
 }
 
+/* Parts of the steps above, each timed alone over PART_CALLS calls with
+ * the inputs of the drives above (docs/bench.md, the floor analysis): the
+ * mean of a part is its cost inside the step, within a few instructions
+ * (a part inlined in its step shares registers there). Their results go to
+ * a digest of their own, so that the results digest above compares with
+ * earlier builds. */
+#define PART_CALLS 2000U
+static uint64_t s_part_sink;
+
+static uint64_t part_insns(uint64_t t0, uint64_t t1)
+{
+    const uint64_t d = t1 - t0;
+    return (d > HAL_MPS2_ICOUNT_OVERHEAD_INSNS) ? (d - HAL_MPS2_ICOUNT_OVERHEAD_INSNS) : 0U;
+}
+
+static int bench_parts(void)
+{
+    if (setup(5U) != 0) {
+        return -1;
+    }
+    const pfe_vehicle_t *truck = &s_platoon.position[1];
+    const pfe_vehicle_t *obj = &s_platoon.object;
+    pfe_accel_filter_t filter;
+    pfe_accel_reset(&filter);
+    pfe_pi_t pi;
+    pfe_pi_init(&pi, (int64_t)1 << 34, (int64_t)1 << 30, 20000);
+    uint64_t grade_total = 0U;
+    uint64_t truck_total = 0U;
+    uint64_t object_total = 0U;
+    uint64_t filter_total = 0U;
+    uint64_t limit_total = 0U;
+    uint64_t pi_total = 0U;
+    uint64_t accel_total = 0U;
+    for (uint32_t k = 0U; k < PART_CALLS; k++) {
+        const pfe_est_input_t in = drive_input(k * 10U);
+        const int32_t v = in.speed_mm_s;
+        const uint64_t v2 = (uint64_t)(uint32_t)v * (uint32_t)v;
+        const int32_t a = ((int32_t)(k % 200U) - 100) * 3000;
+        pfe_grade_accel_t ga;
+        uint64_t t0 = hal_mps2_icount_now();
+        pfe_grade_accel(in.grade_ppm, s_platoon.gravity_um_s2, &ga);
+        uint64_t t1 = hal_mps2_icount_now();
+        grade_total += part_insns(t0, t1);
+        t0 = hal_mps2_icount_now();
+        const int32_t f = pfe_vehicle_truck_fuel_force_n(truck, v2, a, &ga);
+        const uint32_t rate = pfe_fuel_rate_nl_s(f, v, truck->power_aux_w, truck->fuel_q20);
+        t1 = hal_mps2_icount_now();
+        truck_total += part_insns(t0, t1);
+        pfe_grade_accel_t small;
+        t0 = hal_mps2_icount_now();
+        pfe_platoon_grade_accel(&s_platoon, in.grade_ppm, &small);
+        const int32_t fo = pfe_platoon_fuel_force_n(&s_platoon, v2, a, small.along_um_s2);
+        const uint32_t rate_o = pfe_fuel_rate_nl_s(fo, v, obj->power_aux_w, obj->fuel_q20);
+        t1 = hal_mps2_icount_now();
+        object_total += part_insns(t0, t1);
+        t0 = hal_mps2_icount_now();
+        pfe_accel_update(&filter, v, 1U);
+        t1 = hal_mps2_icount_now();
+        filter_total += part_insns(t0, t1);
+        t0 = hal_mps2_icount_now();
+        const int32_t f_max = pfe_platoon_force_max_v2_n(obj, s_platoon.formation_air_q32, v, v2);
+        t1 = hal_mps2_icount_now();
+        limit_total += part_insns(t0, t1);
+        t0 = hal_mps2_icount_now();
+        const int32_t u = pfe_pi_step_in_range(&pi, (25000 - v) * 1000, 26214U,
+                                               -(int32_t)obj->brake_max_n, f_max);
+        t1 = hal_mps2_icount_now();
+        pi_total += part_insns(t0, t1);
+        t0 = hal_mps2_icount_now();
+        const int32_t acc = pfe_platoon_accel_um_s2(&s_platoon, (u * 4) - (f / 4));
+        t1 = hal_mps2_icount_now();
+        accel_total += part_insns(t0, t1);
+        s_part_sink = (s_part_sink ^ (uint64_t)ga.along_um_s2 ^ ((uint64_t)rate << 7) ^
+                       ((uint64_t)rate_o << 13) ^ (uint64_t)filter.accel_um_s2 ^
+                       ((uint64_t)(uint32_t)acc << 21)) * 1099511628211ULL;
+    }
+    hal_mps2_write_bench("part_grade_accel", grade_total / PART_CALLS, "insn");
+    hal_mps2_write_bench("part_truck_fuel", truck_total / PART_CALLS, "insn");
+    hal_mps2_write_bench("part_object_fuel", object_total / PART_CALLS, "insn");
+    hal_mps2_write_bench("part_speed_filter", filter_total / PART_CALLS, "insn");
+    hal_mps2_write_bench("part_force_limit", limit_total / PART_CALLS, "insn");
+    hal_mps2_write_bench("part_pi_step", pi_total / PART_CALLS, "insn");
+    hal_mps2_write_bench("part_platoon_accel", accel_total / PART_CALLS, "insn");
+    return 0;
+}
+
 int main(void)
 {
     hal_mps2_icount_start();
-    if ((bench_estimator(5U, "est_step_n5_mean", "est_step_n5_max") != 0) ||
+    uint64_t n5_total = 0U;
+    int rc = bench_estimator(5U, "est_step_n5_mean", "est_step_n5_max");
+    n5_total = s_est_total;
+    if ((rc != 0) ||
         (bench_estimator(PFE_MAX_VEHICLES, "est_step_n32_mean", "est_step_n32_max") != 0) ||
         (bench_sim() != 0) || (bench_ecu() != 0) || (bench_predict() != 0) ||
         (bench_identify() != 0) || (bench_inputs() != 0) || (bench_burst() != 0)) {
         hal_mps2_write_str("bench: failed\n");
         return 1;
     }
+    /* Each truck beyond the fifth, over the 27 of the largest platoon. */
+    const uint64_t n32_total = s_est_total;
+    const uint64_t extra = (n32_total > n5_total) ? (n32_total - n5_total) : 0U;
+    hal_mps2_write_bench("est_step_per_truck",
+                         (extra + ((MEASURED_TICKS * (PFE_MAX_VEHICLES - 5U)) / 2U)) /
+                             (MEASURED_TICKS * (PFE_MAX_VEHICLES - 5U)),
+                         "insn");
     hal_mps2_write_bench("stack_used", hal_mps2_stack_used_bytes(), "bytes");
     hal_mps2_write_str("m4_bench: results digest ");
     hal_mps2_write_hex64(s_sink);
+    hal_mps2_write_str("\n");
+    int later = bench_estimator(1U, "est_step_n1_mean", "est_step_n1_max");
+    s_use_mixed = true;
+    later |= bench_estimator(5U, "est_step_n5_mixed_mean", "est_step_n5_mixed_max");
+    s_use_mixed = false;
+    if ((later != 0) || (bench_parts() != 0)) {
+        hal_mps2_write_str("bench: failed\n");
+        return 1;
+    }
+    hal_mps2_write_str("m4_bench: parts digest ");
+    hal_mps2_write_hex64(s_part_sink);
     hal_mps2_write_str("\n");
     return 0;
 }

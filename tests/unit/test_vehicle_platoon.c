@@ -98,6 +98,71 @@ static void test_fuel_force_includes_rotating_mass(void **state)
     assert_int_equal(pfe_vehicle_air_n(&third, 25000), 1572);
 }
 
+/* The step-time forms for one truck and for the object model give the
+ * general functions' forces, at hand-computed points and at the corners of
+ * their ranges (the heaviest, largest truck at full speed, the largest
+ * accelerations and grades). */
+static void test_step_forms_match_the_general_forces(void **state)
+{
+    (void)state;
+    const pfe_vehicle_t v = truck(0U);
+    pfe_grade_accel_t flat;
+    pfe_grade_accel(0, 9810000U, &flat);
+    /* 5166 N (above) + 41200 kg * 0.5 m/s^2 = 25766 N, as the general form. */
+    assert_int_equal(pfe_vehicle_truck_fuel_force_n(&v, 625000000U, 500000, &flat), 25766);
+    assert_int_equal(pfe_vehicle_truck_fuel_force_n(&v, 625000000U, 0, &flat), 5166);
+    pfe_vehicle_calib_t big = pfe_default_vehicle;
+    big.mass_kg = PFE_MASS_MAX_KG;
+    big.rot_mass_kg = PFE_MASS_MAX_KG;
+    big.drag_area_mm2 = PFE_DRAG_AREA_MAX_MM2;
+    big.roll_coef_ppm = 100000U;
+    pfe_vehicle_t heavy;
+    assert_int_equal(pfe_vehicle_init(&heavy, &big, &pfe_default_env, 0U), PFE_OK);
+    const pfe_vehicle_t *trucks[] = {&v, &heavy};
+    const int32_t speeds[] = {0, 1, 25000, PFE_SPEED_MAX_MM_S};
+    const int32_t accels[] = {-PFE_ACCEL_MAX_UM_S2, -1, 0, 300000, PFE_ACCEL_MAX_UM_S2};
+    const int32_t grades[] = {-PFE_GRADE_MAX_PPM, -40000, 0, 30000, PFE_GRADE_MAX_PPM};
+    for (uint32_t t = 0U; t < 2U; t++) {
+        for (uint32_t i = 0U; i < 4U; i++) {
+            const uint64_t v2 = (uint64_t)(uint32_t)speeds[i] * (uint32_t)speeds[i];
+            for (uint32_t j = 0U; j < 5U; j++) {
+                for (uint32_t k = 0U; k < 5U; k++) {
+                    pfe_grade_accel_t g;
+                    pfe_grade_accel(grades[k], 9810000U, &g);
+                    assert_int_equal(pfe_vehicle_truck_fuel_force_n(trucks[t], v2, accels[j], &g),
+                                     pfe_vehicle_fuel_force_n(trucks[t], speeds[i], accels[j], &g));
+                }
+            }
+        }
+    }
+    /* The object model: 5 default trucks and 32 of the largest. */
+    pfe_platoon_config_t cfg;
+    pfe_platoon_t pl;
+    for (uint32_t t = 0U; t < 2U; t++) {
+        pfe_platoon_config_uniform(&cfg, (t == 0U) ? 5U : PFE_MAX_VEHICLES, 10000U,
+                                   (t == 0U) ? &pfe_default_vehicle : &big, &pfe_default_env,
+                                   &pfe_default_drag);
+        assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+        for (uint32_t i = 0U; i < 4U; i++) {
+            const uint64_t v2 = (uint64_t)(uint32_t)speeds[i] * (uint32_t)speeds[i];
+            for (uint32_t j = 0U; j < 5U; j++) {
+                for (uint32_t k = 0U; k < 5U; k++) {
+                    pfe_grade_accel_t g;
+                    pfe_platoon_grade_accel(&pl, grades[k], &g);
+                    assert_int_equal(pfe_platoon_fuel_force_n(&pl, v2, accels[j], g.along_um_s2),
+                                     pfe_vehicle_fuel_force_n(&pl.object, speeds[i], accels[j], &g));
+                }
+            }
+        }
+    }
+    /* 5 default trucks at 25 m/s, flat: 8610.75 N of air (below) and
+     * 5 * 2746.8 N of rolling, 22344.75 N. */
+    pfe_platoon_config_uniform(&cfg, 5U, 10000U, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    assert_in_range(pfe_platoon_fuel_force_n(&pl, 625000000U, 0, 0), 22344, 22345);
+}
+
 static void test_platoon_aggregates(void **state)
 {
     (void)state;
@@ -115,6 +180,9 @@ static void test_platoon_aggregates(void **state)
     assert_int_equal(pl.position[0].reduction_bp, 800);
     assert_int_equal(pl.position[1].reduction_bp, 3100);
     assert_int_equal(pl.position[4].reduction_bp, 3500);
+    /* The third truck's reduction holds for every one behind it: the fourth
+     * and fifth have the third's fuel model; the first three differ. */
+    assert_int_equal(pl.same_as_previous, (1U << 3) | (1U << 4));
     /* eq. 4.6: 2418.75 N * (0.92 + 0.69 + 3 * 0.65) = 8610.75 N at 25 m/s. */
     assert_in_range(pfe_vehicle_air_n(&pl.object, 25000), 8610, 8611);
     /* eq. 4.8 and 4.10, small angle: 5 * 2746.8 N + 200 t * 9.81 * 0.02. */
@@ -168,6 +236,33 @@ static void test_platoon_takes_weakest_power_to_mass(void **state)
     assert_int_equal(pl.object.power_max_w, 500000); /* 5 W/kg * 100 t */
     /* eta_mean = (0.4 + 0.4 + 0.3) / 3: 10^9 * 2^20 / (0.366667e6 * 35800) = 79881.4 */
     assert_in_range(pl.object.fuel_q20, 79881 - 1, 79881 + 1);
+}
+
+/* A position reuses the fuel rate of the one before it only when every
+ * coefficient of the fuel model is the same: an efficiency of its own
+ * breaks the chain, a power limit of its own (not in the fuel model) does
+ * not. */
+static void test_platoon_marks_repeated_fuel_models(void **state)
+{
+    (void)state;
+    pfe_vehicle_calib_t thrifty = pfe_default_vehicle;
+    thrifty.eta_ppm = 420000U;
+    pfe_vehicle_calib_t strong = pfe_default_vehicle;
+    strong.power_max_w = 400000U;
+    pfe_platoon_config_t cfg;
+    pfe_platoon_config_uniform(&cfg, 6U, 10000U, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    cfg.vehicle[3] = &thrifty;
+    cfg.vehicle[5] = &strong;
+    pfe_platoon_t pl;
+    memset(&pl, 0xA5, sizeof pl);
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    assert_int_equal(pl.same_as_previous, 1U << 5);
+    /* One truck: no position repeats another. */
+    pfe_platoon_config_uniform(&cfg, 1U, 10000U, &pfe_default_vehicle, &pfe_default_env,
+                               &pfe_default_drag);
+    assert_int_equal(pfe_platoon_init(&pl, &cfg), PFE_OK);
+    assert_int_equal(pl.same_as_previous, 0U);
 }
 
 static void test_platoon_rejects_bad_configuration(void **state)
@@ -244,8 +339,10 @@ int main(void)
         cmocka_unit_test(test_force_limits),
         cmocka_unit_test(test_fuel_rate_and_fuel_cut),
         cmocka_unit_test(test_fuel_force_includes_rotating_mass),
+        cmocka_unit_test(test_step_forms_match_the_general_forces),
         cmocka_unit_test(test_platoon_aggregates),
         cmocka_unit_test(test_platoon_takes_weakest_power_to_mass),
+        cmocka_unit_test(test_platoon_marks_repeated_fuel_models),
         cmocka_unit_test(test_platoon_rejects_bad_configuration),
         cmocka_unit_test(test_platoon_init_in_pieces),
     };
