@@ -171,25 +171,37 @@ const pfe_codec_message_t *pfe_codec_find_message(uint32_t id);
  * quotient to nearest (halves up), encoders invert it rounded to nearest.
  * ranges is PFE_CODEC_RANGES_J1939 when the DBC's VAL_ names the signal's
  * all-ones code NotAvailable.
+ *
+ * An image built with PFE_CODEC_NO_NAMES (the Cortex-M4 and STM32 images)
+ * keeps only what the firmware reads: the layout, the raw range and the
+ * conversion to its unit (28 bytes a signal instead of 64); the names,
+ * SPNs, the DBC's own scale and offset and the units are for host tools
+ * and tests.
  */
 typedef struct {
+#ifndef PFE_CODEC_NO_NAMES
     const char *message;     /* DBC message name */
     uint32_t pgn;
     const char *name;        /* DBC signal name */
     uint32_t spn;            /* J1939 SPN; 0 for the module's own signals */
+#endif
     uint8_t start_bit;       /* DBC start bit: the least significant bit (Intel) */
     uint8_t length;          /* bits, 1 .. 32 */
     uint8_t byte_order;      /* PFE_CODEC_LITTLE_ENDIAN */
     bool is_signed;          /* false for all: J1939 uses offsets */
     int8_t mux;              /* PFE_CODEC_MUX_NONE, PFE_CODEC_MUXER or the mux value (DBC mN) */
     uint8_t ranges;          /* PFE_CODEC_RANGES_* */
+#ifndef PFE_CODEC_NO_NAMES
     int32_t scale_num;
     int32_t scale_den;       /* > 0 */
     int32_t offset_num;
     int32_t offset_den;      /* > 0 */
+#endif
     uint32_t raw_min;
     uint32_t raw_max;
-    const char *unit;        /* DBC unit; "" in an image built with PFE_CODEC_NO_NAMES */
+#ifndef PFE_CODEC_NO_NAMES
+    const char *unit;        /* DBC unit */
+#endif
     int32_t fw_num;          /* > 0 */
     int32_t fw_den;          /* > 0 */
     int32_t fw_offset;

@@ -593,8 +593,10 @@ static int write_source(FILE *f, const void *ctx)
             " * PFE_CODEC_NO_NAMES keeps the tables without them. */\n"
             "#ifdef PFE_CODEC_NO_NAMES\n"
             "#define DBC_TEXT(s) \"\"\n"
+            "#define DBC_HOST(...)\n"
             "#else\n"
             "#define DBC_TEXT(s) (s)\n"
+            "#define DBC_HOST(...) __VA_ARGS__\n"
             "#endif\n"
             "\n"
             "const pfe_codec_message_t pfe_codec_messages[PFE_MSG_COUNT] = {\n",
@@ -605,7 +607,7 @@ static int write_source(FILE *f, const void *ctx)
                           : m->rx          ? "PFE_CODEC_DIR_RX"
                                            : "PFE_CODEC_DIR_TX";
         fprintf(f,
-                "    [%s] = {.name = \"%s\", .pgn = %" PRIu32 "UL, .priority = %" PRIu32 "U,\n"
+                "    [%s] = {.name = DBC_TEXT(\"%s\"), .pgn = %" PRIu32 "UL, .priority = %" PRIu32 "U,\n"
                 "        .dbc_address = 0x%02" PRIX32 "U, .dlc = %uU, .direction = %s,\n"
                 "        .cycle_ms = %" PRIu32 "U, .first_signal = (uint8_t)%s, .n_signals = %uU},\n",
                 k_msgs[k].index, m->dbc->name, m->pgn, m->priority, m->address, (unsigned)m->dbc->dlc,
@@ -625,13 +627,13 @@ static int write_source(FILE *f, const void *ctx)
         }
         put_signal_comment(f, o);
         fprintf(f,
-                "    [%s] = {.message = \"%s\", .pgn = %" PRIu32 "UL,\n"
-                "        .name = DBC_TEXT(\"%s\"), .spn = %" PRIu32 "U, .start_bit = %uU, .length = %uU,\n"
+                "    [%s] = {DBC_HOST(.message = \"%s\", .pgn = %" PRIu32 "UL,\n"
+                "        .name = \"%s\", .spn = %" PRIu32 "U,) .start_bit = %uU, .length = %uU,\n"
                 "        .byte_order = PFE_CODEC_LITTLE_ENDIAN, .is_signed = false, .mux = %s,\n"
                 "        .ranges = %s,\n"
-                "        .scale_num = %" PRId64 ", .scale_den = %" PRId64 ", .offset_num = %" PRId64
-                ", .offset_den = %" PRId64 ",\n"
-                "        .raw_min = %" PRIu32 "UL, .raw_max = %" PRIu32 "UL, .unit = DBC_TEXT(\"%s\"),\n"
+                "        DBC_HOST(.scale_num = %" PRId64 ", .scale_den = %" PRId64 ", .offset_num = %" PRId64
+                ", .offset_den = %" PRId64 ",)\n"
+                "        .raw_min = %" PRIu32 "UL, .raw_max = %" PRIu32 "UL, DBC_HOST(.unit = \"%s\",)\n"
                 "        .fw_num = %" PRId64 ", .fw_den = %" PRId64 ", .fw_offset = %" PRId64 "},\n",
                 k_sigs[i].index, m->dbc->name, m->pgn, o->dbc->name, o->spn, (unsigned)o->dbc->start_bit,
                 (unsigned)o->dbc->length, mux, o->j1939 ? "PFE_CODEC_RANGES_J1939" : "PFE_CODEC_RANGES_NONE",

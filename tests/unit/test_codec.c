@@ -146,8 +146,10 @@ static void test_message_table(void **state)
         assert_int_equal(msg->first_signal, covered); /* contiguous, in order */
         covered += msg->n_signals;
         for (uint32_t i = msg->first_signal; i < (uint32_t)msg->first_signal + msg->n_signals; i++) {
+#ifndef PFE_CODEC_NO_NAMES /* the images keep no names (pfe_codec.h) */
             assert_int_equal(pfe_codec_signals[i].pgn, msg->pgn);
             assert_string_equal(pfe_codec_signals[i].message, msg->name);
+#endif
         }
     }
     assert_int_equal(covered, PFE_CODEC_SIGNAL_COUNT);
@@ -168,8 +170,11 @@ static void test_signal_table_is_consistent(void **state)
             ASSERT_LE((uint32_t)a->start_bit + a->length, 8U * msg->dlc);
             assert_int_equal(a->byte_order, PFE_CODEC_LITTLE_ENDIAN);
             assert_false(a->is_signed);
+#ifndef PFE_CODEC_NO_NAMES
             ASSERT_GT(a->scale_den, 0);
             ASSERT_GT(a->offset_den, 0);
+#endif
+            ASSERT_GT(a->fw_den, 0);
             ASSERT_LE(a->raw_min, a->raw_max);
             if (a->length < 32U) {
                 ASSERT_LT(a->raw_max, 1UL << a->length);
