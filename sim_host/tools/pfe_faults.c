@@ -298,7 +298,10 @@ static int judge_one(const fault_t *ft, uint64_t t0, uint8_t sa, uint64_t slack_
     const uint64_t search_from = (from > (t0 + SEARCH_US)) ? (from - SEARCH_US) : t0;
     uint64_t onset = 0U, back = 0U, prev = 0U;
     bool have_onset = false, have_back = false, have_prev = false;
-    for (size_t k = 0U; (k < g_n) && !have_back; k++) {
+    /* A silence is the longest gap of the input near the fault's time, not
+     * the first one: a loaded machine stalls the replay for tens of ms
+     * before the fault's seconds. */
+    for (size_t k = 0U; (k < g_n) && ((ft->kind == FAULT_SILENT) || !have_back); k++) {
         const cap_t *c = &g_cap[k];
         if (!is_pgn(&c->f, pgn) || module_frame(c, sa)) {
             continue;
@@ -306,7 +309,8 @@ static int judge_one(const fault_t *ft, uint64_t t0, uint8_t sa, uint64_t slack_
         const pfe_sig_state_t got = input_state(ft->input, &c->f);
         if (ft->kind == FAULT_SILENT) {
             if (have_prev && (prev >= search_from) && (prev < to) &&
-                ((c->t_us - prev) > (2U * period_us))) {
+                ((c->t_us - prev) > (2U * period_us)) &&
+                (!have_back || ((c->t_us - prev) > (back - onset)))) {
                 onset = prev;
                 back = c->t_us;
                 have_onset = true;
