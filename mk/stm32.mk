@@ -46,12 +46,14 @@ STM32_LDFLAGS = $(M4_ARCH_FLAGS) -O2 -flto -nostartfiles -nostdlib -Llinker -T$(
 # $(call stm32_image,NAME,SOURCES,LDFLAGS): $(STM32_OUT)/NAME.elf from the
 # Cortex-M4 objects of SOURCES (compiled once, $(M4_OUT)/obj/image/), linked
 # for the STM32F405 (and LDFLAGS), refused by scripts/check_image.sh if it
-# links the heap or floating point.
+# links the heap or floating point. Its objects' dependency files are read,
+# so that a changed header rebuilds them (main_ecu.o is in no M4 image).
 define stm32__image
 $(STM32_OUT)/$(1).elf: $(call m4__objs,image,$(2)) $(STM32_LDSCRIPT)
 	@mkdir -p $$(@D)
 	$$(M4_CC) $$(filter %.o,$$^) $$(STM32_LDFLAGS) $(3) -o $$@
 	$$(M4_CHECK) $$@ || { rm -f $$@; exit 1; }
+-include $(patsubst %.o,%.d,$(call m4__objs,image,$(2)))
 endef
 stm32_image = $(eval $(call stm32__image,$(1),$(2),$(3)))
 

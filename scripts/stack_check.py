@@ -300,7 +300,11 @@ def read_ci(paths):
                     if u:
                         usage = (int(u.group(1)), u.group(2))
                 loc = label[1] if len(label) > 1 and ":" in label[1] else None
-                nodes[short(m.group(1))] = {"usage": usage, "loc": loc}
+                title = short(m.group(1))
+                # An LTO partition that only calls a function lists it too,
+                # without its usage: the defining partition's node wins.
+                if usage is not None or title not in nodes:
+                    nodes[title] = {"usage": usage, "loc": loc}
                 continue
             m = EDGE.match(line)
             if m:
