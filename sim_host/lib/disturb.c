@@ -115,3 +115,69 @@ void disturb_free(disturb_t *d)
     d->n = 0U;
     d->room = 0U;
 }
+
+/* One run of a periodic message's frames, their send times t[0 .. n-1]:
+ * the run's base, then the made times (disturb.h). */
+static void made_times_run(const uint64_t *t, const size_t *at, size_t n, uint64_t p_us,
+                           uint64_t *made_us, uint64_t *late_max_us)
+{
+    int64_t base = INT64_MAX;
+    for (size_t j = 0U; j < n; j++) {
+        const int64_t b = (int64_t)t[j] - (int64_t)(j * p_us);
+        base = (b < base) ? b : base;
+    }
+    for (size_t j = 0U; j < n; j++) {
+        made_us[at[j]] = (uint64_t)(base + (int64_t)(j * p_us));
+        const uint64_t late = t[j] - made_us[at[j]];
+        *late_max_us = (late > *late_max_us) ? late : *late_max_us;
+    }
+}
+
+/* One periodic message's frames, run by run. */
+static void made_times_of(const capture_t *cap, uint8_t module_sa, uint32_t pgn, uint64_t p_us,
+                          uint64_t *t, size_t *at, uint64_t *made_us, uint64_t *late_max_us)
+{
+    if (p_us == 0U) {
+        return; /* sent on request only: no schedule */
+    }
+    size_t n = 0U;
+    for (size_t k = 0U; k < cap->n; k++) {
+        const capture_rec_t *r = &cap->recs[k];
+        if ((pfe_j1939_source(r->f.id) != module_sa) || (pfe_j1939_pgn(r->f.id) != pgn)) {
+            continue;
+        }
+        if ((n > 0U) && ((r->t_us - t[n - 1U]) > ((3U * p_us) / 2U))) {
+            made_times_run(t, at, n, p_us, made_us, late_max_us);
+            n = 0U;
+        }
+        t[n] = r->t_us;
+        at[n] = k;
+        n++;
+    }
+    if (n > 0U) {
+        made_times_run(t, at, n, p_us, made_us, late_max_us);
+    }
+}
+
+int disturb_made_times(const capture_t *cap, uint8_t module_sa, uint64_t *made_us,
+                       uint64_t *late_max_us)
+{
+    *late_max_us = 0U;
+    for (size_t k = 0U; k < cap->n; k++) {
+        made_us[k] = cap->recs[k].t_us;
+    }
+    uint64_t *t = malloc((cap->n + 1U) * sizeof *t);
+    size_t *at = malloc((cap->n + 1U) * sizeof *at);
+    const int ok = (t != NULL) && (at != NULL);
+    if (ok) {
+        made_times_of(cap, module_sa, PFE_PGN_OWN_FUEL,
+                      (uint64_t)pfe_codec_messages[PFE_MSG_OWN_FUEL].cycle_ms * 1000U, t, at, made_us,
+                      late_max_us);
+        made_times_of(cap, module_sa, PFE_PGN_PLATOON_FUEL,
+                      (uint64_t)pfe_codec_messages[PFE_MSG_PLATOON_FUEL].cycle_ms * 1000U, t, at,
+                      made_us, late_max_us);
+    }
+    free(t);
+    free(at);
+    return ok ? 0 : -1;
+}

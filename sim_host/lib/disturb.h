@@ -59,4 +59,22 @@ bool disturbed(const disturb_t *d, uint64_t t_us);
 
 void disturb_free(disturb_t *d);
 
+/*
+ * When the module made each of its periodic frames, by its own schedule:
+ * PFE_OwnFuel and PFE_PlatoonFuel go out every period P (GenMsgCycleTime,
+ * 100 ms) at a fixed tick, so within a run of them (frames at most 1.5 P
+ * apart) frame n was made at base + n P, base the smallest send - n P of
+ * the run (its least late frame). A loop catching up after a stall sends
+ * its ticks' frames late, with each tick's values: judged at its send time
+ * such a frame meets a reference that moved on. A gap of over 1.5 P (a
+ * stall's start, frames missing from the capture, a restart) starts a new
+ * run, numbered from its first frame and based on its own least late one,
+ * so that a missing frame shifts nothing. made_us[k] (cap->n of them) is
+ * that time for those frames, the record's own time for every other;
+ * *late_max_us the largest send - made. 0, or -1 out of memory (made_us
+ * then the records' own times).
+ */
+int disturb_made_times(const capture_t *cap, uint8_t module_sa, uint64_t *made_us,
+                       uint64_t *late_max_us);
+
 #endif /* DISTURB_H */

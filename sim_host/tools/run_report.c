@@ -82,7 +82,10 @@ static const char k_manual[] =
     "150 ms) or after the module reports 5 or more lost ticks, and rates among\n"
     "the module's own bunched frames (LFE1 or PFE_OwnFuel outside 50 to 150 ms:\n"
     "a loop catching up after a stall) are left out and counted\n"
-    "(rate_frames_disturbed_pct). When another node sends LFE1 (the\n"
+    "(rate_frames_disturbed_pct). PFE_OwnFuel and PFE_PlatoonFuel are judged at\n"
+    "the tick that made each, by their 100 ms schedule (frame n of a run at the\n"
+    "run's least late frame + n periods), not at its send time: a loop catching\n"
+    "up sends right values late. When another node sends LFE1 (the\n"
     "engine's measured fuel rate), the module's own-truck rate is judged against\n"
     "it too (engine_rate_r, engine_fuel_ratio, overall and split by PFE_OwnFuel's\n"
     "ModelIdentified). The predictions (PFE_FuelPrediction) are judged against\n"
@@ -1174,6 +1177,7 @@ typedef struct {
     size_t lfe1, lfe1_na;
     size_t rate_frames, rate_disturbed; /* LFE1 and PFE_PlatoonFuel after warm-up */
     size_t input_events, overrun_events, output_events;
+    uint64_t late_max_us;   /* the latest a periodic frame went out after its tick */
     size_t csv_rows;
     plot_data_t plot;               /* what the CSV holds */
     size_t n_in, n_mod;
@@ -1240,6 +1244,7 @@ typedef struct {
     double platoon_used;
     bool judged;            /* after warm-up, within the inputs */
     double t_s;             /* since the first input */
+    uint64_t t_us;          /* the instant: the frame's, or when the module made it */
 } ref_at_t;
 
 static void ref_at(const ref_run_t *run, const analysis_t *a, uint64_t warm_us, uint64_t t_us,
@@ -1247,6 +1252,7 @@ static void ref_at(const ref_run_t *run, const analysis_t *a, uint64_t warm_us, 
 {
     /* None before the first input: nothing used yet. */
     const bool started = t_us >= a->t_first_in;
+    ra->t_us = t_us;
     ra->t_s = started ? (double)(t_us - a->t_first_in) / 1e6 : 0.0;
     const size_t at = started ? tick_at(run, t_us, hint) : 0U;
     ra->st = started ? state_before(run, t_us, shint) : run->n_states;
@@ -1274,7 +1280,7 @@ static void note_platoon_fuel(analysis_t *a, const options_t *o, const ref_run_t
     if (calm && (m.fuel_rate_nl_s.state == PFE_SIG_VALID)) {
         const double got = m.fuel_rate_nl_s.value / 1e9;
         double want = 0.0;
-        (void)nearest_rate(run, ra->st, r->t_us, true, got, &want);
+        (void)nearest_rate(run, ra->st, ra->t_us, true, got, &want);
         rate_compare(&a->platoon, got, want, ra->t_s, o->floor_l_h);
     }
 }
@@ -1314,7 +1320,7 @@ static void note_own_rate(analysis_t *a, const options_t *o, const ref_run_t *ru
          * estimate either; a rate is compared with 0 there. */
         const bool calm = !disturbed(dist, r->t_us);
         double want = 0.0;
-        const bool ref_valid = ra->have_tick && nearest_rate(run, ra->st, r->t_us, false, got, &want);
+        const bool ref_valid = ra->have_tick && nearest_rate(run, ra->st, ra->t_us, false, got, &want);
         a->lfe1++;
         a->rate_frames++;
         if (!calm) {
@@ -1354,8 +1360,15 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
     a->input_events = dist.input_events;
     a->overrun_events = dist.overrun_events;
     a->output_events = dist.output_events;
+    /* the module's periodic frames judged at the ticks that made them */
+    uint64_t *made = malloc((cap->n + 1U) * sizeof *made);
+    if ((made != NULL) && (disturb_made_times(cap, (uint8_t)o->module_sa, made, &a->late_max_us) != 0)) {
+        free(made);
+        made = NULL; /* out of memory: judged at the frames' own times */
+    }
     inputs_t in = {0};
     size_t hint = 0U, shint = 0U;
+    size_t made_hint[2] = {0U, 0U}, made_shint[2] = {0U, 0U}; /* PFE_OwnFuel, PFE_PlatoonFuel */
     fprintf(csv, "time_s,speed_kmh,grade_pct,module_rate_l_h,ref_rate_l_h,module_total_l,ref_total_l\n");
     for (size_t k = 0U; k < cap->n; k++) {
         const capture_rec_t *r = &cap->recs[k];
@@ -1365,7 +1378,12 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
             continue;
         }
         ref_at_t ra;
-        ref_at(run, a, warm_us, r->t_us, &hint, &shint, &ra);
+        const int sched = (pgn == PFE_PGN_OWN_FUEL) ? 0 : ((pgn == PFE_PGN_PLATOON_FUEL) ? 1 : -1);
+        if ((sched >= 0) && (made != NULL)) {
+            ref_at(run, a, warm_us, made[k], &made_hint[sched], &made_shint[sched], &ra);
+        } else {
+            ref_at(run, a, warm_us, r->t_us, &hint, &shint, &ra);
+        }
         /* the own truck's figures: PFE_OwnFuel, else LFE1 and HRLFC */
         own_sample_t own;
         if (own_sample(&r->f, a->own_src, &own) && own.total_valid) {
@@ -1380,6 +1398,7 @@ static void analyse(const capture_t *cap, const options_t *o, const ref_run_t *r
         }
     }
     disturb_free(&dist);
+    free(made);
 }
 
 static void set_quantities(const analysis_t *a, const capture_t *cap, const ref_run_t *run)
@@ -1545,6 +1564,8 @@ static void print_summary(const options_t *o, const capture_t *cap, const analys
            "module's own frames\n", a->rate_disturbed, a->rate_frames,
            fmt_q(Q_DISTURBED_PCT, 1, "%", b1, sizeof b1), DISTURB_RECOVERY_US / 1e6, a->input_events,
            a->overrun_events, DISTURB_LOST_TICKS_MIN, a->output_events);
+    printf("  PFE_OwnFuel and PFE_PlatoonFuel judged at the ticks that made them (their 100 ms "
+           "schedule): sent up to %.1f ms after them\n", (double)a->late_max_us / 1000.0);
     printf("  module status: tick overruns %s, rx dropped %s, tx dropped %s, normal mode %s\n",
            fmt_q(Q_OVERRUNS, 0, "", b1, sizeof b1), fmt_q(Q_RX_DROPPED, 0, "", b2, sizeof b2),
            fmt_q(Q_TX_DROPPED, 0, "", b3, sizeof b3), fmt_q(Q_NORMAL_PCT, 1, "%", b4, sizeof b4));

@@ -141,6 +141,21 @@ output_gap() {
         has "$out/last.out" "rates not judged: [1-9][0-9]* of "
 }
 
+# The module's PFE_OwnFuel and PFE_PlatoonFuel of 20.0 to 21.0 s sent 80 ms
+# late (a loop catching up after a stall sends each tick's right values
+# late): judged at the ticks that made them (their 100 ms schedule), the
+# rates are right; judged at their send times they were 18 % off.
+late_frames() {
+    awk '{ t = substr($1, 2, 17) + 0; if (NR == 1) t0 = t; d = t - t0
+           if (($3 ~ /^18FF058C#/ || $3 ~ /^18FF038C#/) && (d >= 20.0) && (d < 21.0)) {
+               $1 = sprintf("(%.6f)", t + 0.080) } print }' "$out/right.log" |
+        sort -s -k1,1 >"$out/late.log"
+    runs 0 "$report" "$out/late.log" --out "$out/late/report" --no-plot \
+        --expect "$out/accuracy.expect" &&
+        has "$out/last.out" "verdict PASS" &&
+        has "$out/last.out" "judged at the ticks that made them .*: sent up to 80.0 ms after them"
+}
+
 bad_expectations() {
     printf 'max_rate_error_pct 1.0\n\n# fine so far\nfuel_l 1.0\n' >"$out/bad1.expect"
     runs 2 "$report" "$out/right.log" --out "$out/bad/report" --no-plot --expect "$out/bad1.expect" &&
@@ -254,6 +269,7 @@ check other_phase other_phase
 check wrong_module wrong_module
 check input_gap input_gap
 check output_gap output_gap
+check late_frames late_frames
 check bad_expectations bad_expectations
 check bad_capture bad_capture
 check not_measured not_measured
