@@ -12,7 +12,6 @@
 #ifndef HAL_STM32_ECU_H
 #define HAL_STM32_ECU_H
 
-#include <stdbool.h>
 #include <stdint.h>
 
 #include "firmware/pfe_ecu.h"
