@@ -54,6 +54,7 @@
 #include <stdint.h>
 
 #include "pfe_can.h"
+#include "pfe_dbc.h" /* generated from the DBC: see "messages" below */
 #include "pfe_fixed.h"
 
 /* ------------------------------------------------------------ errors */
@@ -87,48 +88,16 @@ typedef struct {
 
 /* ------------------------------------------------------------ messages */
 
-#define PFE_PGN_CCVS1 65265UL            /* 0xFEF1 */
-#define PFE_PGN_SSI 61459UL              /* 0xF013 */
-#define PFE_PGN_PLATOON_CONFIG 65280UL   /* 0xFF00, proprietary B */
-#define PFE_PGN_GRADE_PREVIEW 65281UL    /* 0xFF01 */
-#define PFE_PGN_LFE1 65266UL             /* 0xFEF2 */
-#define PFE_PGN_PLATOON_FUEL 65282UL     /* 0xFF02 */
-#define PFE_PGN_HRLFC 64777UL            /* 0xFD09 */
-#define PFE_PGN_FUEL_PREDICTION 65283UL  /* 0xFF03 */
-#define PFE_PGN_STATUS 65284UL           /* 0xFF04 */
-#define PFE_PGN_ADDRESS_CLAIMED 60928UL  /* 0xEE00, PDU1 */
-#define PFE_PGN_REQUEST 59904UL          /* 0xEA00, PDU1 */
-#define PFE_PGN_VDS 65256UL              /* 0xFEE8, Vehicle Direction/Speed */
-#define PFE_PGN_CVW 65136UL              /* 0xFE70, Combination Vehicle Weight */
-#define PFE_PGN_OWN_FUEL 65285UL         /* 0xFF05 */
-#define PFE_PGN_INPUT_STATUS 65286UL     /* 0xFF06 */
-#define PFE_PGN_DEVICE_STATUS 65287UL    /* 0xFF07 */
+/* PFE_PGN_<MESSAGE> (each message's PGN), PFE_RX_PERIOD_MS_<MESSAGE> (each
+ * received message's period), PFE_ECU_RX_FILTERS, pfe_msg_index_t and
+ * pfe_sig_index_t come from the DBC: the build writes pfe_dbc.h with dbc2c
+ * (its manual: dbc2c --help) and puts its folder on the include path. */
 
 /* The module's default source address (it claims it with AddressClaimed). */
 #define PFE_CODEC_DEFAULT_ADDRESS 0x8CU
 
 #define PFE_CODEC_DIR_RX 1U  /* the module reads it */
 #define PFE_CODEC_DIR_TX 2U  /* the module sends it */
-
-typedef enum {
-    PFE_MSG_CCVS1 = 0,
-    PFE_MSG_SSI,
-    PFE_MSG_PLATOON_CONFIG,
-    PFE_MSG_GRADE_PREVIEW,
-    PFE_MSG_LFE1,
-    PFE_MSG_PLATOON_FUEL,
-    PFE_MSG_HRLFC,
-    PFE_MSG_FUEL_PREDICTION,
-    PFE_MSG_STATUS,
-    PFE_MSG_ADDRESS_CLAIMED,
-    PFE_MSG_REQUEST,
-    PFE_MSG_VDS,
-    PFE_MSG_CVW,
-    PFE_MSG_OWN_FUEL,
-    PFE_MSG_INPUT_STATUS,
-    PFE_MSG_DEVICE_STATUS,
-    PFE_MSG_COUNT
-} pfe_msg_index_t;
 
 /* One message of can_dbc/pfe.dbc. */
 typedef struct {
@@ -207,89 +176,6 @@ typedef struct {
     int32_t fw_offset;
 } pfe_codec_signal_t;
 
-/* Index of each signal in pfe_codec_signals[], message by message in DBC order. */
-typedef enum {
-    PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED = 0,
-    PFE_CSIG_SSI_PITCH_ANGLE,
-    PFE_CSIG_SSI_ROLL_ANGLE,
-    PFE_CSIG_SSI_PITCH_ANGLE_FOM,
-    PFE_CSIG_PC_NUMBER_OF_VEHICLES,
-    PFE_CSIG_PC_OWN_POSITION,
-    PFE_CSIG_PC_GAP,
-    PFE_CSIG_PC_TIME_GAP,
-    PFE_CSIG_PC_SET_SPEED,
-    PFE_CSIG_GP_FRAME_TYPE,
-    PFE_CSIG_GP_PREVIEW_ID,
-    PFE_CSIG_GP_SAMPLE_COUNT,
-    PFE_CSIG_GP_SAMPLE_SPACING,
-    PFE_CSIG_GP_SAMPLE_INDEX,
-    PFE_CSIG_GP_GRADE_SAMPLE0,
-    PFE_CSIG_GP_GRADE_SAMPLE1,
-    PFE_CSIG_GP_GRADE_SAMPLE2,
-    PFE_CSIG_LFE1_ENGINE_FUEL_RATE,
-    PFE_CSIG_PF_PLATOON_FUEL_RATE,
-    PFE_CSIG_PF_PLATOON_TOTAL_FUEL_USED,
-    PFE_CSIG_HRLFC_TRIP_FUEL,
-    PFE_CSIG_HRLFC_TOTAL_FUEL_USED,
-    PFE_CSIG_FP_PREDICTED_FUEL,
-    PFE_CSIG_FP_PREDICTED_FUEL_LOWER,
-    PFE_CSIG_FP_PREDICTED_FUEL_UPPER,
-    PFE_CSIG_FP_PREDICTED_TIME,
-    PFE_CSIG_ST_SPEED_INPUT,
-    PFE_CSIG_ST_GRADE_INPUT,
-    PFE_CSIG_ST_PLATOON_CONFIG_INPUT,
-    PFE_CSIG_ST_GRADE_PREVIEW_INPUT,
-    PFE_CSIG_ST_DEGRADED_MODE,
-    PFE_CSIG_ST_RX_FRAMES_DROPPED,
-    PFE_CSIG_ST_TICK_OVERRUNS,
-    PFE_CSIG_ST_TX_FRAMES_DROPPED,
-    PFE_CSIG_ST_WARMING_UP,
-    PFE_CSIG_ST_SPEED_CLAMPED,
-    PFE_CSIG_ST_GRADE_CLAMPED,
-    PFE_CSIG_ST_OUTPUT_SATURATED,
-    PFE_CSIG_ST_INPUTS_REJECTED,
-    PFE_CSIG_ST_ADDRESS_CONFLICTS,
-    PFE_CSIG_AC_IDENTITY_NUMBER,
-    PFE_CSIG_AC_MANUFACTURER_CODE,
-    PFE_CSIG_AC_ECU_INSTANCE,
-    PFE_CSIG_AC_FUNCTION_INSTANCE,
-    PFE_CSIG_AC_FUNCTION,
-    PFE_CSIG_AC_RESERVED,
-    PFE_CSIG_AC_VEHICLE_SYSTEM,
-    PFE_CSIG_AC_VEHICLE_SYSTEM_INSTANCE,
-    PFE_CSIG_AC_INDUSTRY_GROUP,
-    PFE_CSIG_AC_ARBITRARY_ADDRESS_CAPABLE,
-    PFE_CSIG_RQST_REQUESTED_PGN,
-    PFE_CSIG_VDS_COMPASS_BEARING,
-    PFE_CSIG_VDS_NAV_SPEED,
-    PFE_CSIG_VDS_PITCH,
-    PFE_CSIG_VDS_ALTITUDE,
-    PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT,
-    PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT,
-    PFE_CSIG_OF_OWN_FUEL_RATE,
-    PFE_CSIG_OF_OWN_TOTAL_FUEL_USED,
-    PFE_CSIG_OF_MODEL_IDENTIFIED,
-    PFE_CSIG_IS_SPEED_SOURCE,
-    PFE_CSIG_IS_GRADE_SOURCE_ADDRESS,
-    PFE_CSIG_IS_FUEL_RATE_SOURCE,
-    PFE_CSIG_IS_SPEED_SENDERS,
-    PFE_CSIG_IS_GRADE_SENDERS,
-    PFE_CSIG_IS_GRADE_SOURCE,
-    PFE_CSIG_IS_MASS_SOURCE,
-    PFE_CSIG_IS_IDENTIFICATION_STATE,
-    PFE_CSIG_IS_VEHICLE_MASS,
-    PFE_CSIG_DS_RX_FIFO_OVERRUNS,
-    PFE_CSIG_DS_BUS_OFF_EVENTS,
-    PFE_CSIG_DS_ERROR_WARNING,
-    PFE_CSIG_DS_ERROR_PASSIVE,
-    PFE_CSIG_DS_BUS_OFF,
-    PFE_CSIG_DS_NVM_WRITE_FAILING,
-    PFE_CSIG_DS_RESET_CAUSE,
-    PFE_CSIG_DS_TX_ERROR_COUNTER,
-    PFE_CSIG_DS_RX_ERROR_COUNTER,
-    PFE_CSIG_DS_NVM_WRITE_FAILURES,
-    PFE_CODEC_SIGNAL_COUNT
-} pfe_sig_index_t;
 
 extern const pfe_codec_signal_t pfe_codec_signals[PFE_CODEC_SIGNAL_COUNT];
 extern const uint32_t pfe_codec_signal_count;
@@ -401,7 +287,8 @@ int pfe_codec_encode_grade_preview(pfe_can_frame_t *frame, const pfe_msg_grade_p
  *
  * Samples are kept as received (raw, 2 bytes each) so that a sample the
  * sender marked not available stays so; read them with
- * pfe_preview_grade_ppm().
+ * pfe_preview_grade_ppm(), which reads sample i with the scale, offset and
+ * range of the signal it came in (GradeSample0, 1 or 2: slot i % 3).
  */
 typedef enum {
     PFE_PREVIEW_EMPTY = 0,      /* nothing held: waiting for a header */
