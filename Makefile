@@ -167,7 +167,7 @@ test-host: $(HOST_TEST_BINS) test-asserts
 	@echo "== host: the ECU loop on hal/fake"; $(HOSTSAN)/test_ecu_loop
 	@echo "== host: the tools' option tables"; $(HOSTSAN)/test_cli_args
 
-## the codec generated from the DBC: a changed copy (scale, period, unit) changes the firmware built over it alone; the unchanged DBC gives the build's tables; dbc2c's refusals
+## the codec generated from the DBC: a changed copy (scale, period, unit, PGN) changes the firmware built over it alone; the unchanged DBC gives the build's tables; dbc2c's refusals
 test-codec-gen: $(HOST)/dbc2c $(FW_GEN_SRC) $(FW_GEN_HDR)
 	@echo "== host: the codec generated from $(DBC), and from a changed copy"
 	@CC="$(HOST_CC)" CFLAGS="$(HOST_CFLAGS)" sh tests/codec_gen/codec_gen_test.sh $(HOST)/dbc2c $(DBC) $(FW_GEN_SRC) $(FW_GEN_HDR) $(BUILD)/codec-gen

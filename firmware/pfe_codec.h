@@ -5,7 +5,10 @@
  * can_dbc/pfe.dbc is the definition of the frames. pfe_codec_messages[]
  * and pfe_codec_signals[] are generated from it at build time by
  * sim_host/tools/dbc2c.c (build/gen/pfe_dbc.c; dbc2c --help): ids, PGNs,
- * layouts, scales, offsets, ranges, units, periods and value states. The
+ * layouts, scales, offsets, ranges, units, periods and value states; and
+ * so is the header this one includes (build/gen/pfe_dbc.h): the PGN
+ * macros, the received messages' periods, the table indices and each
+ * signal's range in the firmware's unit. The
  * codec reads and writes raw values through that table only, and converts
  * them to firmware units with the table's scale in the firmware unit
  * (fw_num / fw_den, fw_offset): a scale, offset, range or unit changed in
@@ -194,10 +197,19 @@ pfe_sig_state_t pfe_codec_raw_state(const pfe_codec_signal_t *sig, uint32_t raw)
  * signal with PFE_CODEC_RANGES_NONE. VALID and OUT_OF_RANGE give all ones. */
 uint32_t pfe_codec_raw_code(const pfe_codec_signal_t *sig, pfe_sig_state_t state);
 
+/*
+ * The decoded messages below. Each value is in the unit its name says
+ * (mm/s, udeg, ppm, nL/s, uL, ms, mm, kg, ...). Its scale, offset and
+ * [min|max] are the DBC's: a decoder gives raw * scale + offset in that
+ * unit, rounded to nearest, and the range in that unit is
+ * PFE_CSIG_<SIGNAL>_MIN .. PFE_CSIG_<SIGNAL>_MAX (pfe_dbc.h). An encoder
+ * inverts it, rounded to nearest.
+ */
+
 /* ------------------------------------------------------------ CCVS1 (input) */
 
 typedef struct {
-    pfe_sig_i32_t speed_mm_s;   /* SPN 84; 1/256 km/h = 625/576 mm/s, rounded; 0 .. 69721 */
+    pfe_sig_i32_t speed_mm_s;   /* SPN 84 */
 } pfe_msg_ccvs1_t;
 
 int pfe_codec_decode_ccvs1(const pfe_can_frame_t *frame, pfe_msg_ccvs1_t *out);
@@ -209,8 +221,8 @@ int pfe_codec_encode_ccvs1(pfe_can_frame_t *frame, const pfe_msg_ccvs1_t *in, ui
 #define PFE_SSI_FOM_DEGRADED 1U
 
 typedef struct {
-    pfe_sig_i32_t pitch_udeg;   /* SPN 3318; 0.002 deg = 2000 udeg, -64e6 .. 64.51e6 */
-    pfe_sig_i32_t roll_udeg;    /* SPN 3319; same scale */
+    pfe_sig_i32_t pitch_udeg;   /* SPN 3318 */
+    pfe_sig_i32_t roll_udeg;    /* SPN 3319 */
     pfe_sig_u32_t pitch_fom;    /* SPN 3323; PFE_SSI_FOM_* (10b ERROR, 11b NOT_AVAILABLE) */
 } pfe_msg_ssi_t;
 
@@ -235,9 +247,9 @@ int32_t pfe_codec_grade_ppm_from_pitch(int32_t pitch_udeg, bool *saturated);
 typedef struct {
     pfe_sig_u32_t n_vehicles;      /* 1 .. 32 */
     pfe_sig_u32_t own_position;    /* 0 (lead) .. 31; OUT_OF_RANGE when >= a valid n_vehicles */
-    pfe_sig_u32_t gap_mm;          /* 0.01 m = 10 mm; 0 .. 642550 */
-    pfe_sig_u32_t time_gap_ms;     /* 0 .. 64255 */
-    pfe_sig_i32_t set_speed_mm_s;  /* 1/256 km/h, as CCVS1 */
+    pfe_sig_u32_t gap_mm;
+    pfe_sig_u32_t time_gap_ms;
+    pfe_sig_i32_t set_speed_mm_s;
 } pfe_msg_platoon_config_t;
 
 int pfe_codec_decode_platoon_config(const pfe_can_frame_t *frame, pfe_msg_platoon_config_t *out);
@@ -267,7 +279,7 @@ typedef struct {
     pfe_sig_u32_t sample_count;    /* header: 1 .. 1000 */
     pfe_sig_u32_t spacing_m;       /* header: 1 .. 250 */
     pfe_sig_u32_t first_index;     /* data: 0 .. 999 */
-    pfe_sig_i32_t grade_ppm[PFE_PREVIEW_SAMPLES_PER_FRAME]; /* data: 0.002 % = 20 ppm, -640000 .. 645100 */
+    pfe_sig_i32_t grade_ppm[PFE_PREVIEW_SAMPLES_PER_FRAME]; /* data */
 } pfe_msg_grade_preview_t;
 
 int pfe_codec_decode_grade_preview(const pfe_can_frame_t *frame, pfe_msg_grade_preview_t *out);
@@ -339,7 +351,7 @@ uint32_t pfe_preview_copy_ppm(const pfe_preview_t *pv, uint32_t first, uint32_t 
 /* ------------------------------------------------------------ LFE1 (output) */
 
 typedef struct {
-    pfe_sig_u32_t fuel_rate_nl_s;  /* SPN 183; raw = round(nl_s * 9 / 125000), 0.05 L/h */
+    pfe_sig_u32_t fuel_rate_nl_s;  /* SPN 183 */
 } pfe_msg_lfe1_t;
 
 int pfe_codec_decode_lfe1(const pfe_can_frame_t *frame, pfe_msg_lfe1_t *out);
@@ -348,8 +360,8 @@ int pfe_codec_encode_lfe1(pfe_can_frame_t *frame, const pfe_msg_lfe1_t *in, uint
 /* ------------------------------------------------------------ PFE_PlatoonFuel (output) */
 
 typedef struct {
-    pfe_sig_u32_t fuel_rate_nl_s;  /* 0.05 L/h, as LFE1 */
-    pfe_sig_u64_t fuel_used_ul;    /* 0.001 L = 1000 uL, rounded; 0 .. 4211081215000 */
+    pfe_sig_u32_t fuel_rate_nl_s;
+    pfe_sig_u64_t fuel_used_ul;
 } pfe_msg_platoon_fuel_t;
 
 int pfe_codec_decode_platoon_fuel(const pfe_can_frame_t *frame, pfe_msg_platoon_fuel_t *out);
@@ -360,7 +372,7 @@ int pfe_codec_encode_platoon_fuel(pfe_can_frame_t *frame, const pfe_msg_platoon_
 
 typedef struct {
     pfe_sig_u64_t trip_fuel_ul;    /* SPN 5053; the module sends it not available */
-    pfe_sig_u64_t total_fuel_ul;   /* SPN 5054; 0.001 L, rounded */
+    pfe_sig_u64_t total_fuel_ul;   /* SPN 5054 */
 } pfe_msg_hrlfc_t;
 
 int pfe_codec_decode_hrlfc(const pfe_can_frame_t *frame, pfe_msg_hrlfc_t *out);
@@ -369,10 +381,10 @@ int pfe_codec_encode_hrlfc(pfe_can_frame_t *frame, const pfe_msg_hrlfc_t *in, ui
 /* ------------------------------------------------------------ PFE_FuelPrediction (output) */
 
 typedef struct {
-    pfe_sig_u32_t fuel_ul;         /* 0.01 L = 10000 uL, rounded; 0 .. 642550000 */
+    pfe_sig_u32_t fuel_ul;
     pfe_sig_u32_t fuel_lower_ul;
     pfe_sig_u32_t fuel_upper_ul;
-    pfe_sig_u32_t time_ms;         /* 0.1 s = 100 ms, rounded; 0 .. 6425500 */
+    pfe_sig_u32_t time_ms;
 } pfe_msg_fuel_prediction_t;
 
 int pfe_codec_decode_fuel_prediction(const pfe_can_frame_t *frame, pfe_msg_fuel_prediction_t *out);
@@ -459,10 +471,10 @@ int pfe_codec_encode_request(pfe_can_frame_t *frame, uint32_t pgn, uint8_t desti
 /* ------------------------------------------------------------ VDS (input) */
 
 typedef struct {
-    pfe_sig_u32_t bearing_mdeg;     /* SPN 165; 1/128 deg, rounded to 0.001 deg; 0 .. 501992 */
-    pfe_sig_i32_t nav_speed_mm_s;   /* SPN 517; 1/256 km/h, as CCVS1 */
-    pfe_sig_i32_t pitch_mdeg;       /* SPN 583; 1/128 deg - 200 deg, rounded; -200000 .. 301992 */
-    pfe_sig_i32_t altitude_mm;      /* SPN 580; 0.125 m = 125 mm, offset -2500 m; -2500000 .. 5531875 */
+    pfe_sig_u32_t bearing_mdeg;     /* SPN 165 */
+    pfe_sig_i32_t nav_speed_mm_s;   /* SPN 517 */
+    pfe_sig_i32_t pitch_mdeg;       /* SPN 583 */
+    pfe_sig_i32_t altitude_mm;      /* SPN 580 */
 } pfe_msg_vds_t;
 
 int pfe_codec_decode_vds(const pfe_can_frame_t *frame, pfe_msg_vds_t *out);
@@ -471,8 +483,8 @@ int pfe_codec_encode_vds(pfe_can_frame_t *frame, const pfe_msg_vds_t *in, uint8_
 /* ------------------------------------------------------------ CVW (input) */
 
 typedef struct {
-    pfe_sig_u32_t powered_vehicle_kg;     /* SPN 1585; 10 kg; 0 .. 642550 */
-    pfe_sig_u32_t gross_combination_kg;   /* SPN 1760; 10 kg; 0 .. 642550 */
+    pfe_sig_u32_t powered_vehicle_kg;     /* SPN 1585 */
+    pfe_sig_u32_t gross_combination_kg;   /* SPN 1760 */
 } pfe_msg_cvw_t;
 
 int pfe_codec_decode_cvw(const pfe_can_frame_t *frame, pfe_msg_cvw_t *out);
@@ -481,8 +493,8 @@ int pfe_codec_encode_cvw(pfe_can_frame_t *frame, const pfe_msg_cvw_t *in, uint8_
 /* ------------------------------------------------------------ PFE_OwnFuel (output) */
 
 typedef struct {
-    pfe_sig_u32_t fuel_rate_nl_s;   /* 0.05 L/h, as LFE1 */
-    pfe_sig_u64_t fuel_used_ul;     /* 0.001 L, as HRLFC */
+    pfe_sig_u32_t fuel_rate_nl_s;
+    pfe_sig_u64_t fuel_used_ul;
     pfe_sig_u32_t model_identified; /* 0 calibrated, 1 identified */
 } pfe_msg_own_fuel_t;
 
@@ -511,7 +523,7 @@ typedef struct {
     pfe_sig_u32_t grade_source;     /* PFE_GRADE_SOURCE_* */
     pfe_sig_u32_t mass_source;      /* PFE_MASS_SOURCE_* */
     pfe_sig_u32_t identification;   /* 0 learning, 1 converged */
-    pfe_sig_u32_t vehicle_mass_kg;  /* 10 kg, rounded; 0 .. 642550 */
+    pfe_sig_u32_t vehicle_mass_kg;
 } pfe_msg_input_status_t;
 
 int pfe_codec_decode_input_status(const pfe_can_frame_t *frame, pfe_msg_input_status_t *out);

@@ -14,7 +14,8 @@ const pfe_input_rule_t pfe_input_rules[PFE_IN_COUNT] = {
     /* SSI pitch as grade, ppm: +-50 %, 20 %/s + 0.5 % a frame */
     [PFE_IN_GRADE] = {PFE_PGN_SSI, PFE_RX_PERIOD_MS_SSI * 1000U, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM, 200000U, 5000U, 0U},
     /* VDS altitude, mm: the signal's range, 15 m/s + 10 m a frame (J1939-71: every 1 s) */
-    [PFE_IN_ALTITUDE] = {PFE_PGN_VDS, PFE_RX_PERIOD_MS_VDS * 1000U, -2500000, 5531875, 15000U, 10000U, 0U},
+    [PFE_IN_ALTITUDE] = {PFE_PGN_VDS, PFE_RX_PERIOD_MS_VDS * 1000U, PFE_CSIG_VDS_ALTITUDE_MIN,
+                         PFE_CSIG_VDS_ALTITUDE_MAX, 15000U, 10000U, 0U},
     /* CVW gross combination weight, kg: the calibration's range */
     [PFE_IN_MASS] = {PFE_PGN_CVW, PFE_RX_PERIOD_MS_CVW * 1000U, (int32_t)PFE_MASS_MIN_KG, (int32_t)PFE_MASS_MAX_KG, 0U, 0U, 0U},
     /* LFE1 engine fuel rate, nL/s: 0 .. 250 L/h */

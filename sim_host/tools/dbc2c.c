@@ -43,6 +43,8 @@ static const char k_manual[] =
     "                                        module assumes when it gives up a silent\n"
     "                                        sender of the input; 0 for none\n"
     "    PFE_ECU_RX_FILTERS                  the number of received messages\n"
+    "    PFE_CSIG_<SIGNAL>_MIN, _MAX         the [min|max] of each signal with a\n"
+    "                                        unit, in the firmware's unit\n"
     "    pfe_msg_index_t, PFE_MSG_COUNT      the messages' indices in the tables\n"
     "    pfe_sig_index_t, PFE_CODEC_SIGNAL_COUNT\n"
     "                                        the signals' indices, message by message\n"
@@ -669,6 +671,15 @@ static int write_source(FILE *f, const void *ctx)
     return (fputs("};\n", f) == EOF) ? -1 : 0;
 }
 
+/* The firmware value of a raw count, as the codec decodes it
+ * (firmware/pfe_codec.c fw_of_raw: raw * num / den rounded to nearest, plus
+ * the offset). */
+static int64_t fw_value(const sig_out_t *o, uint32_t raw)
+{
+    const __int128 den = o->fw_scale.den;
+    return (int64_t)(((__int128)raw * o->fw_scale.num + den / 2) / den) + o->fw_offset;
+}
+
 static int write_header(FILE *f, const void *ctx)
 {
     const tables_t *t = ctx;
@@ -725,8 +736,23 @@ static int write_header(FILE *f, const void *ctx)
             "    PFE_CODEC_SIGNAL_COUNT = %u\n"
             "} pfe_sig_index_t;\n"
             "\n"
-            "#endif /* PFE_DBC_H */\n",
+            "/* The [min|max] of each signal with a unit, in the firmware's unit (as\n"
+            " * the codec decodes raw min and raw max: rounded to nearest). */\n",
             (unsigned)N_SIGS);
+    for (unsigned i = 0U; i < N_SIGS; i++) {
+        const sig_out_t *o = &t->sigs[i];
+        if (k_sigs[i].fw_unit[0] == '\0') {
+            continue;
+        }
+        const char *suffix = (k_sigs[i].type == FW_I32) ? "" : (k_sigs[i].type == FW_U32) ? "U" : "ULL";
+        const int64_t lim[2] = {fw_value(o, o->raw_min), fw_value(o, o->raw_max)};
+        for (unsigned j = 0U; j < 2U; j++) {
+            fprintf(f, "#define %s_%s %s%" PRId64 "%s%s /* %s %s */\n", k_sigs[i].index, (j == 0U) ? "MIN" : "MAX",
+                    (lim[j] < 0) ? "(" : "", lim[j], suffix, (lim[j] < 0) ? ")" : "",
+                    (j == 0U) ? o->dbc->min_text : o->dbc->max_text, o->dbc->unit);
+        }
+    }
+    fputs("\n#endif /* PFE_DBC_H */\n", f);
     return ferror(f) ? -1 : 0;
 }
 
