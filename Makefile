@@ -20,8 +20,9 @@ ROAD_NAMES := flat uphill hilly
 WARN := -std=c11 -Wall -Wextra -Werror -Wconversion -Wsign-conversion -Wshadow \
         -Wdouble-promotion -Wstrict-prototypes -Wundef -Wcast-qual -Wpointer-arith
 # Project headers by their path: "firmware/x.h", "hal/x.h", and the host
-# tools' "lib/x.h", "ref/x.h" (sim_host/); tests also name firmware headers alone.
-HOST_INC := -I. -Isim_host -Ifirmware
+# tools' "lib/x.h", "ref/x.h" (sim_host/); tests also name firmware headers
+# alone; firmware/pfe_codec.h includes the generated "pfe_dbc.h" ($(BUILD)/gen).
+HOST_INC := -I. -Isim_host -Ifirmware -I$(BUILD)/gen
 SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 HOST_CFLAGS := $(WARN) $(HOST_INC) -O2 -g
 SAN_CFLAGS := $(WARN) $(HOST_INC) -O1 -g $(SAN)
@@ -32,6 +33,10 @@ STATIC_CFLAGS := $(WARN) $(HOST_INC) -O2
 GEN := $(BUILD)/gen
 DBC := can_dbc/pfe.dbc
 FW_GEN_SRC := $(GEN)/pfe_dbc.c
+# The header pfe_codec.h includes: PGNs, periods, table indices. Every
+# object is compiled after it is written (order-only prerequisite of the
+# compile rules); the compilers' dependency files then track it.
+FW_GEN_HDR := $(GEN)/pfe_dbc.h
 FW_SRC := $(sort $(wildcard firmware/*.c)) $(FW_GEN_SRC)
 FW_HDR := $(sort $(wildcard firmware/*.h))
 REF_SRC := sim_host/ref/ref_model.c sim_host/ref/sim_compare.c sim_host/lib/road_csv.c sim_host/ref/drive_trace.c
@@ -97,10 +102,10 @@ $(host__dir_$(1))/dbc2c: $(DBC2C_SRC) sim_host/lib/dbc.h sim_host/lib/cli_help.h
 	$$(HOST_CC) $$(host__cflags_$(1)) $(host__ldflags_$(1)) -Wno-maybe-uninitialized -o $$@ $(DBC2C_SRC) -lm
 endef
 $(foreach f,$(HOST_FLAVOURS),$(eval $(call dbc2c__rule,$(f))))
-.SECONDARY: $(FW_GEN_SRC)
-$(FW_GEN_SRC): $(DBC) $(HOST)/dbc2c
+.SECONDARY: $(FW_GEN_SRC) $(FW_GEN_HDR)
+$(FW_GEN_SRC) $(FW_GEN_HDR) &: $(DBC) $(HOST)/dbc2c
 	@mkdir -p $(@D)
-	$(HOST)/dbc2c $(DBC) $@
+	$(HOST)/dbc2c $(DBC) $(FW_GEN_SRC) $(FW_GEN_HDR)
 $(call host_program,pfe_ecu,sim_host/tools/pfe_ecu.c $(ECU_HOST_HAL))
 $(call host_program,pfe_ecu_replay,sim_host/tools/pfe_ecu_replay.c $(ECU_REPLAY_SRC))
 $(call host_program,pfe_faults,sim_host/tools/pfe_faults.c $(HAL_REPLAY_SRC))
@@ -162,10 +167,10 @@ test-host: $(HOST_TEST_BINS) test-asserts
 	@echo "== host: the ECU loop on hal/fake"; $(HOSTSAN)/test_ecu_loop
 	@echo "== host: the tools' option tables"; $(HOSTSAN)/test_cli_args
 
-## the codec generated from the DBC: a changed copy (scale, period, unit) changes the firmware built over it alone; the unchanged DBC gives the build's tables; dbc2c's refusals
-test-codec-gen: $(HOST)/dbc2c $(FW_GEN_SRC)
+## the codec generated from the DBC: a changed copy (scale, period, unit, PGN) changes the firmware built over it alone; the unchanged DBC gives the build's tables; dbc2c's refusals
+test-codec-gen: $(HOST)/dbc2c $(FW_GEN_SRC) $(FW_GEN_HDR)
 	@echo "== host: the codec generated from $(DBC), and from a changed copy"
-	@CC="$(HOST_CC)" CFLAGS="$(HOST_CFLAGS)" sh tests/codec_gen/codec_gen_test.sh $(HOST)/dbc2c $(DBC) $(FW_GEN_SRC) $(BUILD)/codec-gen
+	@CC="$(HOST_CC)" CFLAGS="$(HOST_CFLAGS)" sh tests/codec_gen/codec_gen_test.sh $(HOST)/dbc2c $(DBC) $(FW_GEN_SRC) $(FW_GEN_HDR) $(BUILD)/codec-gen
 
 # ---------------------------------------------------------------- Cortex-M4 (QEMU mps2-an386)
 
@@ -184,7 +189,7 @@ include mk/nvm.mk
 include mk/san.mk
 include mk/load.mk
 include mk/truck.mk
-M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware -DPFE_CODEC_NO_NAMES
+M4_CFLAGS := $(filter-out -Os,$(M4_CFLAGS)) -O2 -flto -Ifirmware -I$(GEN) -DPFE_CODEC_NO_NAMES
 M4_LDFLAGS_IMAGE += -O2 -flto
 M4_LDFLAGS_TEST += -O2 -flto
 include mk/stm32.mk

@@ -682,6 +682,12 @@ static int preview_reject(pfe_preview_t *pv, int rc)
     return rc;
 }
 
+/* The signal each sample of a data frame is carried in: sample i of a
+ * preview came in slot i % 3 of its frame (frames start at SampleIndex 0,
+ * 3, 6 ...), and is read with that signal's scale, offset and range. */
+static const pfe_sig_index_t k_sample_sig[PFE_PREVIEW_SAMPLES_PER_FRAME] = {
+    PFE_CSIG_GP_GRADE_SAMPLE0, PFE_CSIG_GP_GRADE_SAMPLE1, PFE_CSIG_GP_GRADE_SAMPLE2};
+
 int pfe_preview_push(pfe_preview_t *pv, const pfe_can_frame_t *frame)
 {
     if (pv == NULL) {
@@ -723,12 +729,10 @@ int pfe_preview_push(pfe_preview_t *pv, const pfe_can_frame_t *frame)
     if (m.first_index.value < pv->next_index) {
         return preview_reject(pv, PFE_PREVIEW_EORDER);
     }
-    static const pfe_sig_index_t sample_sig[PFE_PREVIEW_SAMPLES_PER_FRAME] = {
-        PFE_CSIG_GP_GRADE_SAMPLE0, PFE_CSIG_GP_GRADE_SAMPLE1, PFE_CSIG_GP_GRADE_SAMPLE2};
     uint32_t index = m.first_index.value;
     for (uint32_t k = 0U; (k < PFE_PREVIEW_SAMPLES_PER_FRAME) && (index < pv->sample_count); k++) {
         uint32_t raw;
-        if (get_raw(frame, sample_sig[k], &raw) != PFE_SIG_VALID) { /* PFE_GradePreview.GradeSampleN */
+        if (get_raw(frame, k_sample_sig[k], &raw) != PFE_SIG_VALID) { /* PFE_GradePreview.GradeSampleN */
             pv->unusable_samples++;
         }
         pv->raw[index] = (uint16_t)raw;
@@ -751,9 +755,10 @@ pfe_sig_state_t pfe_preview_grade_ppm(const pfe_preview_t *pv, uint32_t index, i
         return PFE_SIG_NOT_AVAILABLE;
     }
     const uint32_t raw = pv->raw[index];
-    const pfe_sig_state_t st = pfe_codec_raw_state(&pfe_codec_signals[PFE_CSIG_GP_GRADE_SAMPLE0], raw);
+    const pfe_codec_signal_t *sig = &pfe_codec_signals[k_sample_sig[index % PFE_PREVIEW_SAMPLES_PER_FRAME]];
+    const pfe_sig_state_t st = pfe_codec_raw_state(sig, raw);
     if ((st == PFE_SIG_VALID) && (grade_ppm != NULL)) {
-        *grade_ppm = (int32_t)fw_of_raw(&pfe_codec_signals[PFE_CSIG_GP_GRADE_SAMPLE0], raw);
+        *grade_ppm = (int32_t)fw_of_raw(sig, raw);
     }
     return st;
 }
@@ -766,8 +771,10 @@ uint32_t pfe_preview_copy_ppm(const pfe_preview_t *pv, uint32_t first, uint32_t 
         return 0U;
     }
     const uint32_t n = ((pv->sample_count - first) < count) ? (pv->sample_count - first) : count;
+    uint32_t slot = first % PFE_PREVIEW_SAMPLES_PER_FRAME;
     for (uint32_t k = 0U; k < n; k++) {
-        grade_ppm[k] = (int32_t)fw_of_raw(&pfe_codec_signals[PFE_CSIG_GP_GRADE_SAMPLE0], pv->raw[first + k]);
+        grade_ppm[k] = (int32_t)fw_of_raw(&pfe_codec_signals[k_sample_sig[slot]], pv->raw[first + k]);
+        slot = (slot == (PFE_PREVIEW_SAMPLES_PER_FRAME - 1U)) ? 0U : (slot + 1U);
     }
     return n;
 }

@@ -5,7 +5,10 @@
  * can_dbc/pfe.dbc is the definition of the frames. pfe_codec_messages[]
  * and pfe_codec_signals[] are generated from it at build time by
  * sim_host/tools/dbc2c.c (build/gen/pfe_dbc.c; dbc2c --help): ids, PGNs,
- * layouts, scales, offsets, ranges, units, periods and value states. The
+ * layouts, scales, offsets, ranges, units, periods and value states; and
+ * so is the header this one includes (build/gen/pfe_dbc.h): the PGN
+ * macros, the received messages' periods, the table indices and each
+ * signal's range in the firmware's unit. The
  * codec reads and writes raw values through that table only, and converts
  * them to firmware units with the table's scale in the firmware unit
  * (fw_num / fw_den, fw_offset): a scale, offset, range or unit changed in
@@ -54,6 +57,7 @@
 #include <stdint.h>
 
 #include "pfe_can.h"
+#include "pfe_dbc.h" /* generated from the DBC: see "messages" below */
 #include "pfe_fixed.h"
 
 /* ------------------------------------------------------------ errors */
@@ -87,48 +91,16 @@ typedef struct {
 
 /* ------------------------------------------------------------ messages */
 
-#define PFE_PGN_CCVS1 65265UL            /* 0xFEF1 */
-#define PFE_PGN_SSI 61459UL              /* 0xF013 */
-#define PFE_PGN_PLATOON_CONFIG 65280UL   /* 0xFF00, proprietary B */
-#define PFE_PGN_GRADE_PREVIEW 65281UL    /* 0xFF01 */
-#define PFE_PGN_LFE1 65266UL             /* 0xFEF2 */
-#define PFE_PGN_PLATOON_FUEL 65282UL     /* 0xFF02 */
-#define PFE_PGN_HRLFC 64777UL            /* 0xFD09 */
-#define PFE_PGN_FUEL_PREDICTION 65283UL  /* 0xFF03 */
-#define PFE_PGN_STATUS 65284UL           /* 0xFF04 */
-#define PFE_PGN_ADDRESS_CLAIMED 60928UL  /* 0xEE00, PDU1 */
-#define PFE_PGN_REQUEST 59904UL          /* 0xEA00, PDU1 */
-#define PFE_PGN_VDS 65256UL              /* 0xFEE8, Vehicle Direction/Speed */
-#define PFE_PGN_CVW 65136UL              /* 0xFE70, Combination Vehicle Weight */
-#define PFE_PGN_OWN_FUEL 65285UL         /* 0xFF05 */
-#define PFE_PGN_INPUT_STATUS 65286UL     /* 0xFF06 */
-#define PFE_PGN_DEVICE_STATUS 65287UL    /* 0xFF07 */
+/* PFE_PGN_<MESSAGE> (each message's PGN), PFE_RX_PERIOD_MS_<MESSAGE> (each
+ * received message's period), PFE_ECU_RX_FILTERS, pfe_msg_index_t and
+ * pfe_sig_index_t come from the DBC: the build writes pfe_dbc.h with dbc2c
+ * (its manual: dbc2c --help) and puts its folder on the include path. */
 
 /* The module's default source address (it claims it with AddressClaimed). */
 #define PFE_CODEC_DEFAULT_ADDRESS 0x8CU
 
 #define PFE_CODEC_DIR_RX 1U  /* the module reads it */
 #define PFE_CODEC_DIR_TX 2U  /* the module sends it */
-
-typedef enum {
-    PFE_MSG_CCVS1 = 0,
-    PFE_MSG_SSI,
-    PFE_MSG_PLATOON_CONFIG,
-    PFE_MSG_GRADE_PREVIEW,
-    PFE_MSG_LFE1,
-    PFE_MSG_PLATOON_FUEL,
-    PFE_MSG_HRLFC,
-    PFE_MSG_FUEL_PREDICTION,
-    PFE_MSG_STATUS,
-    PFE_MSG_ADDRESS_CLAIMED,
-    PFE_MSG_REQUEST,
-    PFE_MSG_VDS,
-    PFE_MSG_CVW,
-    PFE_MSG_OWN_FUEL,
-    PFE_MSG_INPUT_STATUS,
-    PFE_MSG_DEVICE_STATUS,
-    PFE_MSG_COUNT
-} pfe_msg_index_t;
 
 /* One message of can_dbc/pfe.dbc. */
 typedef struct {
@@ -207,89 +179,6 @@ typedef struct {
     int32_t fw_offset;
 } pfe_codec_signal_t;
 
-/* Index of each signal in pfe_codec_signals[], message by message in DBC order. */
-typedef enum {
-    PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED = 0,
-    PFE_CSIG_SSI_PITCH_ANGLE,
-    PFE_CSIG_SSI_ROLL_ANGLE,
-    PFE_CSIG_SSI_PITCH_ANGLE_FOM,
-    PFE_CSIG_PC_NUMBER_OF_VEHICLES,
-    PFE_CSIG_PC_OWN_POSITION,
-    PFE_CSIG_PC_GAP,
-    PFE_CSIG_PC_TIME_GAP,
-    PFE_CSIG_PC_SET_SPEED,
-    PFE_CSIG_GP_FRAME_TYPE,
-    PFE_CSIG_GP_PREVIEW_ID,
-    PFE_CSIG_GP_SAMPLE_COUNT,
-    PFE_CSIG_GP_SAMPLE_SPACING,
-    PFE_CSIG_GP_SAMPLE_INDEX,
-    PFE_CSIG_GP_GRADE_SAMPLE0,
-    PFE_CSIG_GP_GRADE_SAMPLE1,
-    PFE_CSIG_GP_GRADE_SAMPLE2,
-    PFE_CSIG_LFE1_ENGINE_FUEL_RATE,
-    PFE_CSIG_PF_PLATOON_FUEL_RATE,
-    PFE_CSIG_PF_PLATOON_TOTAL_FUEL_USED,
-    PFE_CSIG_HRLFC_TRIP_FUEL,
-    PFE_CSIG_HRLFC_TOTAL_FUEL_USED,
-    PFE_CSIG_FP_PREDICTED_FUEL,
-    PFE_CSIG_FP_PREDICTED_FUEL_LOWER,
-    PFE_CSIG_FP_PREDICTED_FUEL_UPPER,
-    PFE_CSIG_FP_PREDICTED_TIME,
-    PFE_CSIG_ST_SPEED_INPUT,
-    PFE_CSIG_ST_GRADE_INPUT,
-    PFE_CSIG_ST_PLATOON_CONFIG_INPUT,
-    PFE_CSIG_ST_GRADE_PREVIEW_INPUT,
-    PFE_CSIG_ST_DEGRADED_MODE,
-    PFE_CSIG_ST_RX_FRAMES_DROPPED,
-    PFE_CSIG_ST_TICK_OVERRUNS,
-    PFE_CSIG_ST_TX_FRAMES_DROPPED,
-    PFE_CSIG_ST_WARMING_UP,
-    PFE_CSIG_ST_SPEED_CLAMPED,
-    PFE_CSIG_ST_GRADE_CLAMPED,
-    PFE_CSIG_ST_OUTPUT_SATURATED,
-    PFE_CSIG_ST_INPUTS_REJECTED,
-    PFE_CSIG_ST_ADDRESS_CONFLICTS,
-    PFE_CSIG_AC_IDENTITY_NUMBER,
-    PFE_CSIG_AC_MANUFACTURER_CODE,
-    PFE_CSIG_AC_ECU_INSTANCE,
-    PFE_CSIG_AC_FUNCTION_INSTANCE,
-    PFE_CSIG_AC_FUNCTION,
-    PFE_CSIG_AC_RESERVED,
-    PFE_CSIG_AC_VEHICLE_SYSTEM,
-    PFE_CSIG_AC_VEHICLE_SYSTEM_INSTANCE,
-    PFE_CSIG_AC_INDUSTRY_GROUP,
-    PFE_CSIG_AC_ARBITRARY_ADDRESS_CAPABLE,
-    PFE_CSIG_RQST_REQUESTED_PGN,
-    PFE_CSIG_VDS_COMPASS_BEARING,
-    PFE_CSIG_VDS_NAV_SPEED,
-    PFE_CSIG_VDS_PITCH,
-    PFE_CSIG_VDS_ALTITUDE,
-    PFE_CSIG_CVW_POWERED_VEHICLE_WEIGHT,
-    PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT,
-    PFE_CSIG_OF_OWN_FUEL_RATE,
-    PFE_CSIG_OF_OWN_TOTAL_FUEL_USED,
-    PFE_CSIG_OF_MODEL_IDENTIFIED,
-    PFE_CSIG_IS_SPEED_SOURCE,
-    PFE_CSIG_IS_GRADE_SOURCE_ADDRESS,
-    PFE_CSIG_IS_FUEL_RATE_SOURCE,
-    PFE_CSIG_IS_SPEED_SENDERS,
-    PFE_CSIG_IS_GRADE_SENDERS,
-    PFE_CSIG_IS_GRADE_SOURCE,
-    PFE_CSIG_IS_MASS_SOURCE,
-    PFE_CSIG_IS_IDENTIFICATION_STATE,
-    PFE_CSIG_IS_VEHICLE_MASS,
-    PFE_CSIG_DS_RX_FIFO_OVERRUNS,
-    PFE_CSIG_DS_BUS_OFF_EVENTS,
-    PFE_CSIG_DS_ERROR_WARNING,
-    PFE_CSIG_DS_ERROR_PASSIVE,
-    PFE_CSIG_DS_BUS_OFF,
-    PFE_CSIG_DS_NVM_WRITE_FAILING,
-    PFE_CSIG_DS_RESET_CAUSE,
-    PFE_CSIG_DS_TX_ERROR_COUNTER,
-    PFE_CSIG_DS_RX_ERROR_COUNTER,
-    PFE_CSIG_DS_NVM_WRITE_FAILURES,
-    PFE_CODEC_SIGNAL_COUNT
-} pfe_sig_index_t;
 
 extern const pfe_codec_signal_t pfe_codec_signals[PFE_CODEC_SIGNAL_COUNT];
 extern const uint32_t pfe_codec_signal_count;
@@ -308,10 +197,19 @@ pfe_sig_state_t pfe_codec_raw_state(const pfe_codec_signal_t *sig, uint32_t raw)
  * signal with PFE_CODEC_RANGES_NONE. VALID and OUT_OF_RANGE give all ones. */
 uint32_t pfe_codec_raw_code(const pfe_codec_signal_t *sig, pfe_sig_state_t state);
 
+/*
+ * The decoded messages below. Each value is in the unit its name says
+ * (mm/s, udeg, ppm, nL/s, uL, ms, mm, kg, ...). Its scale, offset and
+ * [min|max] are the DBC's: a decoder gives raw * scale + offset in that
+ * unit, rounded to nearest, and the range in that unit is
+ * PFE_CSIG_<SIGNAL>_MIN .. PFE_CSIG_<SIGNAL>_MAX (pfe_dbc.h). An encoder
+ * inverts it, rounded to nearest.
+ */
+
 /* ------------------------------------------------------------ CCVS1 (input) */
 
 typedef struct {
-    pfe_sig_i32_t speed_mm_s;   /* SPN 84; 1/256 km/h = 625/576 mm/s, rounded; 0 .. 69721 */
+    pfe_sig_i32_t speed_mm_s;   /* SPN 84 */
 } pfe_msg_ccvs1_t;
 
 int pfe_codec_decode_ccvs1(const pfe_can_frame_t *frame, pfe_msg_ccvs1_t *out);
@@ -323,8 +221,8 @@ int pfe_codec_encode_ccvs1(pfe_can_frame_t *frame, const pfe_msg_ccvs1_t *in, ui
 #define PFE_SSI_FOM_DEGRADED 1U
 
 typedef struct {
-    pfe_sig_i32_t pitch_udeg;   /* SPN 3318; 0.002 deg = 2000 udeg, -64e6 .. 64.51e6 */
-    pfe_sig_i32_t roll_udeg;    /* SPN 3319; same scale */
+    pfe_sig_i32_t pitch_udeg;   /* SPN 3318 */
+    pfe_sig_i32_t roll_udeg;    /* SPN 3319 */
     pfe_sig_u32_t pitch_fom;    /* SPN 3323; PFE_SSI_FOM_* (10b ERROR, 11b NOT_AVAILABLE) */
 } pfe_msg_ssi_t;
 
@@ -349,9 +247,9 @@ int32_t pfe_codec_grade_ppm_from_pitch(int32_t pitch_udeg, bool *saturated);
 typedef struct {
     pfe_sig_u32_t n_vehicles;      /* 1 .. 32 */
     pfe_sig_u32_t own_position;    /* 0 (lead) .. 31; OUT_OF_RANGE when >= a valid n_vehicles */
-    pfe_sig_u32_t gap_mm;          /* 0.01 m = 10 mm; 0 .. 642550 */
-    pfe_sig_u32_t time_gap_ms;     /* 0 .. 64255 */
-    pfe_sig_i32_t set_speed_mm_s;  /* 1/256 km/h, as CCVS1 */
+    pfe_sig_u32_t gap_mm;
+    pfe_sig_u32_t time_gap_ms;
+    pfe_sig_i32_t set_speed_mm_s;
 } pfe_msg_platoon_config_t;
 
 int pfe_codec_decode_platoon_config(const pfe_can_frame_t *frame, pfe_msg_platoon_config_t *out);
@@ -381,7 +279,7 @@ typedef struct {
     pfe_sig_u32_t sample_count;    /* header: 1 .. 1000 */
     pfe_sig_u32_t spacing_m;       /* header: 1 .. 250 */
     pfe_sig_u32_t first_index;     /* data: 0 .. 999 */
-    pfe_sig_i32_t grade_ppm[PFE_PREVIEW_SAMPLES_PER_FRAME]; /* data: 0.002 % = 20 ppm, -640000 .. 645100 */
+    pfe_sig_i32_t grade_ppm[PFE_PREVIEW_SAMPLES_PER_FRAME]; /* data */
 } pfe_msg_grade_preview_t;
 
 int pfe_codec_decode_grade_preview(const pfe_can_frame_t *frame, pfe_msg_grade_preview_t *out);
@@ -401,7 +299,8 @@ int pfe_codec_encode_grade_preview(pfe_can_frame_t *frame, const pfe_msg_grade_p
  *
  * Samples are kept as received (raw, 2 bytes each) so that a sample the
  * sender marked not available stays so; read them with
- * pfe_preview_grade_ppm().
+ * pfe_preview_grade_ppm(), which reads sample i with the scale, offset and
+ * range of the signal it came in (GradeSample0, 1 or 2: slot i % 3).
  */
 typedef enum {
     PFE_PREVIEW_EMPTY = 0,      /* nothing held: waiting for a header */
@@ -452,7 +351,7 @@ uint32_t pfe_preview_copy_ppm(const pfe_preview_t *pv, uint32_t first, uint32_t 
 /* ------------------------------------------------------------ LFE1 (output) */
 
 typedef struct {
-    pfe_sig_u32_t fuel_rate_nl_s;  /* SPN 183; raw = round(nl_s * 9 / 125000), 0.05 L/h */
+    pfe_sig_u32_t fuel_rate_nl_s;  /* SPN 183 */
 } pfe_msg_lfe1_t;
 
 int pfe_codec_decode_lfe1(const pfe_can_frame_t *frame, pfe_msg_lfe1_t *out);
@@ -461,8 +360,8 @@ int pfe_codec_encode_lfe1(pfe_can_frame_t *frame, const pfe_msg_lfe1_t *in, uint
 /* ------------------------------------------------------------ PFE_PlatoonFuel (output) */
 
 typedef struct {
-    pfe_sig_u32_t fuel_rate_nl_s;  /* 0.05 L/h, as LFE1 */
-    pfe_sig_u64_t fuel_used_ul;    /* 0.001 L = 1000 uL, rounded; 0 .. 4211081215000 */
+    pfe_sig_u32_t fuel_rate_nl_s;
+    pfe_sig_u64_t fuel_used_ul;
 } pfe_msg_platoon_fuel_t;
 
 int pfe_codec_decode_platoon_fuel(const pfe_can_frame_t *frame, pfe_msg_platoon_fuel_t *out);
@@ -473,7 +372,7 @@ int pfe_codec_encode_platoon_fuel(pfe_can_frame_t *frame, const pfe_msg_platoon_
 
 typedef struct {
     pfe_sig_u64_t trip_fuel_ul;    /* SPN 5053; the module sends it not available */
-    pfe_sig_u64_t total_fuel_ul;   /* SPN 5054; 0.001 L, rounded */
+    pfe_sig_u64_t total_fuel_ul;   /* SPN 5054 */
 } pfe_msg_hrlfc_t;
 
 int pfe_codec_decode_hrlfc(const pfe_can_frame_t *frame, pfe_msg_hrlfc_t *out);
@@ -482,10 +381,10 @@ int pfe_codec_encode_hrlfc(pfe_can_frame_t *frame, const pfe_msg_hrlfc_t *in, ui
 /* ------------------------------------------------------------ PFE_FuelPrediction (output) */
 
 typedef struct {
-    pfe_sig_u32_t fuel_ul;         /* 0.01 L = 10000 uL, rounded; 0 .. 642550000 */
+    pfe_sig_u32_t fuel_ul;
     pfe_sig_u32_t fuel_lower_ul;
     pfe_sig_u32_t fuel_upper_ul;
-    pfe_sig_u32_t time_ms;         /* 0.1 s = 100 ms, rounded; 0 .. 6425500 */
+    pfe_sig_u32_t time_ms;
 } pfe_msg_fuel_prediction_t;
 
 int pfe_codec_decode_fuel_prediction(const pfe_can_frame_t *frame, pfe_msg_fuel_prediction_t *out);
@@ -572,10 +471,10 @@ int pfe_codec_encode_request(pfe_can_frame_t *frame, uint32_t pgn, uint8_t desti
 /* ------------------------------------------------------------ VDS (input) */
 
 typedef struct {
-    pfe_sig_u32_t bearing_mdeg;     /* SPN 165; 1/128 deg, rounded to 0.001 deg; 0 .. 501992 */
-    pfe_sig_i32_t nav_speed_mm_s;   /* SPN 517; 1/256 km/h, as CCVS1 */
-    pfe_sig_i32_t pitch_mdeg;       /* SPN 583; 1/128 deg - 200 deg, rounded; -200000 .. 301992 */
-    pfe_sig_i32_t altitude_mm;      /* SPN 580; 0.125 m = 125 mm, offset -2500 m; -2500000 .. 5531875 */
+    pfe_sig_u32_t bearing_mdeg;     /* SPN 165 */
+    pfe_sig_i32_t nav_speed_mm_s;   /* SPN 517 */
+    pfe_sig_i32_t pitch_mdeg;       /* SPN 583 */
+    pfe_sig_i32_t altitude_mm;      /* SPN 580 */
 } pfe_msg_vds_t;
 
 int pfe_codec_decode_vds(const pfe_can_frame_t *frame, pfe_msg_vds_t *out);
@@ -584,8 +483,8 @@ int pfe_codec_encode_vds(pfe_can_frame_t *frame, const pfe_msg_vds_t *in, uint8_
 /* ------------------------------------------------------------ CVW (input) */
 
 typedef struct {
-    pfe_sig_u32_t powered_vehicle_kg;     /* SPN 1585; 10 kg; 0 .. 642550 */
-    pfe_sig_u32_t gross_combination_kg;   /* SPN 1760; 10 kg; 0 .. 642550 */
+    pfe_sig_u32_t powered_vehicle_kg;     /* SPN 1585 */
+    pfe_sig_u32_t gross_combination_kg;   /* SPN 1760 */
 } pfe_msg_cvw_t;
 
 int pfe_codec_decode_cvw(const pfe_can_frame_t *frame, pfe_msg_cvw_t *out);
@@ -594,8 +493,8 @@ int pfe_codec_encode_cvw(pfe_can_frame_t *frame, const pfe_msg_cvw_t *in, uint8_
 /* ------------------------------------------------------------ PFE_OwnFuel (output) */
 
 typedef struct {
-    pfe_sig_u32_t fuel_rate_nl_s;   /* 0.05 L/h, as LFE1 */
-    pfe_sig_u64_t fuel_used_ul;     /* 0.001 L, as HRLFC */
+    pfe_sig_u32_t fuel_rate_nl_s;
+    pfe_sig_u64_t fuel_used_ul;
     pfe_sig_u32_t model_identified; /* 0 calibrated, 1 identified */
 } pfe_msg_own_fuel_t;
 
@@ -624,7 +523,7 @@ typedef struct {
     pfe_sig_u32_t grade_source;     /* PFE_GRADE_SOURCE_* */
     pfe_sig_u32_t mass_source;      /* PFE_MASS_SOURCE_* */
     pfe_sig_u32_t identification;   /* 0 learning, 1 converged */
-    pfe_sig_u32_t vehicle_mass_kg;  /* 10 kg, rounded; 0 .. 642550 */
+    pfe_sig_u32_t vehicle_mass_kg;
 } pfe_msg_input_status_t;
 
 int pfe_codec_decode_input_status(const pfe_can_frame_t *frame, pfe_msg_input_status_t *out);

@@ -271,8 +271,8 @@ typedef struct {
  * is for the ECU when (id & mask) == (filter id & mask) for one of them. The
  * J1939 PGN with priority and source masked, and for the PDU1 PGNs
  * (request, address claimed) the destination too. A HAL that installs them
- * keeps other traffic from costing the ECU anything. */
-#define PFE_ECU_RX_FILTERS 10U
+ * keeps other traffic from costing the ECU anything. One per message the
+ * DBC says the module receives: PFE_ECU_RX_FILTERS (pfe_dbc.h). */
 typedef struct {
     uint32_t id;
     uint32_t mask;

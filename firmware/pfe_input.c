@@ -6,18 +6,20 @@
 
 #include "pfe_calib.h"
 
-/* Plausibility table (pfe_input.h gives the reasons for each figure). */
+/* Plausibility table (pfe_input.h gives the reasons for each figure). The
+ * PGNs and periods are the DBC's (pfe_dbc.h). */
 const pfe_input_rule_t pfe_input_rules[PFE_IN_COUNT] = {
     /* CCVS1 speed, mm/s: 0 .. 150 km/h, 10 m/s^2 + 1 m/s a frame */
-    [PFE_IN_SPEED] = {PFE_PGN_CCVS1, 100000U, 0, 41667, 10000U, 1000U, 0U},
+    [PFE_IN_SPEED] = {PFE_PGN_CCVS1, PFE_RX_PERIOD_MS_CCVS1 * 1000U, 0, 41667, 10000U, 1000U, 0U},
     /* SSI pitch as grade, ppm: +-50 %, 20 %/s + 0.5 % a frame */
-    [PFE_IN_GRADE] = {PFE_PGN_SSI, 10000U, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM, 200000U, 5000U, 0U},
+    [PFE_IN_GRADE] = {PFE_PGN_SSI, PFE_RX_PERIOD_MS_SSI * 1000U, -PFE_GRADE_MAX_PPM, PFE_GRADE_MAX_PPM, 200000U, 5000U, 0U},
     /* VDS altitude, mm: the signal's range, 15 m/s + 10 m a frame (J1939-71: every 1 s) */
-    [PFE_IN_ALTITUDE] = {PFE_PGN_VDS, 1000000U, -2500000, 5531875, 15000U, 10000U, 0U},
+    [PFE_IN_ALTITUDE] = {PFE_PGN_VDS, PFE_RX_PERIOD_MS_VDS * 1000U, PFE_CSIG_VDS_ALTITUDE_MIN,
+                         PFE_CSIG_VDS_ALTITUDE_MAX, 15000U, 10000U, 0U},
     /* CVW gross combination weight, kg: the calibration's range */
-    [PFE_IN_MASS] = {PFE_PGN_CVW, 1000000U, (int32_t)PFE_MASS_MIN_KG, (int32_t)PFE_MASS_MAX_KG, 0U, 0U, 0U},
+    [PFE_IN_MASS] = {PFE_PGN_CVW, PFE_RX_PERIOD_MS_CVW * 1000U, (int32_t)PFE_MASS_MIN_KG, (int32_t)PFE_MASS_MAX_KG, 0U, 0U, 0U},
     /* LFE1 engine fuel rate, nL/s: 0 .. 250 L/h */
-    [PFE_IN_ENGINE_FUEL] = {PFE_PGN_LFE1, 100000U, 0, 69444444, 0U, 0U, 60000U},
+    [PFE_IN_ENGINE_FUEL] = {PFE_PGN_LFE1, PFE_RX_PERIOD_MS_LFE1 * 1000U, 0, 69444444, 0U, 0U, 60000U},
 };
 
 void pfe_input_init(pfe_input_t *in, pfe_input_kind_t kind, uint8_t fixed_source)

@@ -90,7 +90,7 @@ typedef enum {
 /* One row of the plausibility table. */
 typedef struct {
     uint32_t pgn;
-    uint32_t period_us;           /* the sender's period; staleness is PFE_INPUT_STALE_PERIODS of it */
+    uint32_t period_us;           /* the sender's period, the DBC's (PFE_RX_PERIOD_MS_*); staleness is PFE_INPUT_STALE_PERIODS of it */
     int32_t min;                  /* plausible range, in the input's unit */
     int32_t max;
     uint32_t max_rate_per_s;      /* largest plausible change per second; 0: not checked */

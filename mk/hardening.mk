@@ -66,14 +66,14 @@ MISRA_CHECK := python3 scripts/misra_check.py --deviations misra/deviations.txt
 MISRA_STM32_SRC = $(FW_SRC) hal/hal_ecu_loop.c hal/hal_can_mem.c $(STM32_MISRA_SRC)
 
 ## MISRA C:2012 on the Cortex-M4 code and the STM32 image (cppcheck's addon, misra/deviations.txt)
-misra: $(HARDEN_STAMP) $(FW_GEN_SRC)
+misra: $(HARDEN_STAMP) $(FW_GEN_SRC) $(FW_GEN_HDR)
 	@mkdir -p $(MISRA_OUT)
-	$(MISRA_CHECK) --build-dir $(MISRA_OUT)/cache -I. -Ifirmware $(MISRA_SRC)
+	$(MISRA_CHECK) --build-dir $(MISRA_OUT)/cache -I. -Ifirmware -I$(GEN) $(MISRA_SRC)
 	@# The STM32F405 image apart (its sources: mk/stm32.mk), as its own
 	@# program: the same HAL functions as hal/replay's, another startup.
 	@cat misra/deviations.txt misra/deviations_stm32.txt > $(MISRA_OUT)/deviations_stm32.txt
 	python3 scripts/misra_check.py --deviations $(MISRA_OUT)/deviations_stm32.txt --allow-unused \
-	    --build-dir $(MISRA_OUT)/cache-stm32 -I. -Ifirmware $(MISRA_STM32_SRC)
+	    --build-dir $(MISRA_OUT)/cache-stm32 -I. -Ifirmware -I$(GEN) $(MISRA_STM32_SRC)
 	@sh tests/misra/planted_test.sh $(MISRA_CHECK)
 
 # ---------------------------------------------------------------- coverage
@@ -96,7 +96,7 @@ COV_TEST_OBJ := $(patsubst %,$(COV_OBJ)/tests/unit/%.o,$(UNIT_TESTS)) \
 # Kept: their .gcno files are the coverage notes of this build.
 .SECONDARY: $(COV_LIB_OBJ) $(COV_TEST_OBJ)
 
-$(COV_OBJ)/%.o: %.c $(FW_HDR) $(HAL_HDR) $(SIM_HDR) | $(HARDEN_STAMP) $(DEPS_STAMP)
+$(COV_OBJ)/%.o: %.c $(FW_HDR) $(FW_GEN_HDR) $(HAL_HDR) $(SIM_HDR) | $(HARDEN_STAMP) $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(HOST_CC) $(COV_CFLAGS) -I. -Ifirmware -Isim_host -c $< -o $@
 

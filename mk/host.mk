@@ -48,7 +48,7 @@ host_libs = $(addprefix $(host__dir_$(1))/,$(HOST_ARCHIVES))
 HOST_OBJ_FLAGS :=
 
 define host__flavour
-$(host__dir_$(1))/obj/%.o: %.c | $(DEPS_STAMP)
+$(host__dir_$(1))/obj/%.o: %.c | $(DEPS_STAMP) $(FW_GEN_HDR)
 	@mkdir -p $$(@D)
 	$$(HOST_CC) $$(host__cflags_$(1)) $$(HOST_OBJ_FLAGS) -MMD -MP -c $$< -o $$@
 

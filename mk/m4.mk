@@ -147,12 +147,12 @@ endef
 m4_image = $(eval $(call m4__image_rule,$(strip $(1)),$(strip $(2))))
 m4_test = $(eval $(call m4__test_rule,$(strip $(1)),$(strip $(2))))
 
-$(M4_OUT)/obj/image/%.o: %.c
+$(M4_OUT)/obj/image/%.o: %.c | $(FW_GEN_HDR)
 	@mkdir -p $(@D)
 	$(M4_CC) $(M4_CFLAGS) -c $< -o $@
 
 # Test sources include cmocka.h: fetch CMocka first.
-$(M4_OUT)/obj/test/%.o: %.c | $(M4_CMOCKA_C)
+$(M4_OUT)/obj/test/%.o: %.c | $(M4_CMOCKA_C) $(FW_GEN_HDR)
 	@mkdir -p $(@D)
 	$(M4_CC) $(M4_CFLAGS_TEST) -c $< -o $@
 

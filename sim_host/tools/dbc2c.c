@@ -2,7 +2,8 @@
  * dbc2c - the firmware codec's tables from can_dbc/pfe.dbc: frame ids,
  * PGNs, signal layouts, scales, offsets, ranges, units, periods, value
  * states and the ECU's receive filters, as C source the firmware links
- * (firmware/pfe_codec.h, pfe_ecu.h declare what it defines).
+ * (firmware/pfe_codec.h, pfe_ecu.h declare what it defines), and the
+ * header of the PGNs, periods and table indices pfe_codec.h includes.
  *
  * The manual (every option, the exit status, examples) is its --help:
  * k_manual below.
@@ -22,12 +23,31 @@
 
 /* The manual: --help prints it whole, a usage error its first lines. */
 static const char k_manual[] =
-    "usage: dbc2c DBC OUT.c\n"
+    "usage: dbc2c DBC OUT.c OUT.h\n"
     "\n"
     "Writes the tables of the firmware's codec (firmware/pfe_codec.h) and the\n"
     "ECU's receive filters (firmware/pfe_ecu.h) from the DBC, as C source that\n"
-    "every firmware build compiles in: a change of a scale, offset, range, unit,\n"
-    "layout or period in the DBC changes the firmware with no other edit.\n"
+    "every firmware build compiles in, and the header of the names the\n"
+    "firmware gives the DBC's values, which firmware/pfe_codec.h includes as\n"
+    "\"pfe_dbc.h\" (OUT.h is that file: the build puts its folder on the include\n"
+    "path). A change of a PGN, scale, offset, range, unit, layout or period in\n"
+    "the DBC changes the firmware with no other edit.\n"
+    "\n"
+    "OUT.h defines:\n"
+    "\n"
+    "    PFE_PGN_<MESSAGE>                   each message's PGN, from its id\n"
+    "    PFE_RX_PERIOD_MS_<MESSAGE>          each received message's period: its\n"
+    "                                        GenMsgCycleTime, or for a message sent\n"
+    "                                        on request or on change (cycle time 0)\n"
+    "                                        the DBC's PFEInputPeriod, the period the\n"
+    "                                        module assumes when it gives up a silent\n"
+    "                                        sender of the input; 0 for none\n"
+    "    PFE_ECU_RX_FILTERS                  the number of received messages\n"
+    "    PFE_CSIG_<SIGNAL>_MIN, _MAX         the [min|max] of each signal with a\n"
+    "                                        unit, in the firmware's unit\n"
+    "    pfe_msg_index_t, PFE_MSG_COUNT      the messages' indices in the tables\n"
+    "    pfe_sig_index_t, PFE_CODEC_SIGNAL_COUNT\n"
+    "                                        the signals' indices, message by message\n"
     "\n"
     "OUT.c defines:\n"
     "\n"
@@ -49,6 +69,8 @@ static const char k_manual[] =
     "  - a message is sent by the module when its transmitter is the node PFE,\n"
     "    and received when its attribute PFEReceivedFrom is AnySourceAddress\n"
     "    (the id's source address stands for any sender);\n"
+    "  - a received message's period is its GenMsgCycleTime, or when that is 0\n"
+    "    its PFEInputPeriod (0 .. 65535 ms);\n"
     "  - a signal has the J1939-71 value states (error, not available, and for\n"
     "    whole bytes parameter-specific and reserved codes) when its VAL_ names\n"
     "    its all-ones code NotAvailable; an Error entry must then be the J1939\n"
@@ -63,68 +85,63 @@ static const char k_manual[] =
     "firmware reads (Intel byte order, unsigned, 1 to 32 bits inside the DLC);\n"
     "a unit the firmware can convert; min and max that are whole raw counts\n"
     "inside the signal's bits and below the J1939 special codes; firmware values\n"
-    "inside the firmware's integer type; a period of 0 to 65535 ms. Messages\n"
+    "inside the firmware's integer type; a period of 0 to 65535 ms; an input\n"
+    "the firmware watches (pfe_input.h: CCVS1, SSI, VDS, CVW, LFE1) with a\n"
+    "period. Messages\n"
     "and signals of the DBC the firmware has no use for are left out.\n"
     "\n"
-    "The file is written under a temporary name and renamed, so a failed run\n"
+    "Each file is written under a temporary name and renamed, so a failed run\n"
     "leaves no partial file.\n"
     "\n"
     "Exit status: 0 done, 1 the DBC is unreadable, malformed or refused by a\n"
-    "check above (the reason on standard error), or OUT.c cannot be written,\n"
+    "check above (the reason on standard error), or OUT.c or OUT.h cannot be\n"
+    "written,\n"
     "2 usage error.\n"
     "\n"
     "Example:\n"
-    "  dbc2c can_dbc/pfe.dbc build/gen/pfe_dbc.c\n";
+    "  dbc2c can_dbc/pfe.dbc build/gen/pfe_dbc.c build/gen/pfe_dbc.h\n";
 
 #define MODULE_NODE "PFE"
 #define RX_ATTR "PFEReceivedFrom"
 #define RX_ANY 1 /* index of AnySourceAddress in the attribute's ENUM */
+#define PERIOD_ATTR "PFEInputPeriod"
 
 /* ------------------------------------------------------------ what the firmware needs */
 
-/* The messages of pfe_msg_index_t, in its order. */
+/* The messages of pfe_msg_index_t, in its order: the firmware's name of
+ * each (PFE_MSG_<name>, PFE_PGN_<name>, PFE_RX_PERIOD_MS_<name>). */
 typedef struct {
-    const char *index;  /* enumerator in firmware/pfe_codec.h */
-    const char *name;   /* DBC message */
+    const char *c_name;  /* the firmware's name */
+    const char *name;    /* DBC message */
+    bool watched;        /* an input pfe_input.h watches: it needs a period */
 } need_msg_t;
 
 static const need_msg_t k_msgs[] = {
-    {"PFE_MSG_CCVS1", "CCVS1"},
-    {"PFE_MSG_SSI", "SSI"},
-    {"PFE_MSG_PLATOON_CONFIG", "PFE_PlatoonConfig"},
-    {"PFE_MSG_GRADE_PREVIEW", "PFE_GradePreview"},
-    {"PFE_MSG_LFE1", "LFE1"},
-    {"PFE_MSG_PLATOON_FUEL", "PFE_PlatoonFuel"},
-    {"PFE_MSG_HRLFC", "HRLFC"},
-    {"PFE_MSG_FUEL_PREDICTION", "PFE_FuelPrediction"},
-    {"PFE_MSG_STATUS", "PFE_Status"},
-    {"PFE_MSG_ADDRESS_CLAIMED", "AddressClaimed"},
-    {"PFE_MSG_REQUEST", "Request"},
-    {"PFE_MSG_VDS", "VDS"},
-    {"PFE_MSG_CVW", "CVW"},
-    {"PFE_MSG_OWN_FUEL", "PFE_OwnFuel"},
-    {"PFE_MSG_INPUT_STATUS", "PFE_InputStatus"},
-    {"PFE_MSG_DEVICE_STATUS", "PFE_DeviceStatus"},
+    {"CCVS1", "CCVS1", true},
+    {"SSI", "SSI", true},
+    {"PLATOON_CONFIG", "PFE_PlatoonConfig", false},
+    {"GRADE_PREVIEW", "PFE_GradePreview", false},
+    {"LFE1", "LFE1", true},
+    {"PLATOON_FUEL", "PFE_PlatoonFuel", false},
+    {"HRLFC", "HRLFC", false},
+    {"FUEL_PREDICTION", "PFE_FuelPrediction", false},
+    {"STATUS", "PFE_Status", false},
+    {"ADDRESS_CLAIMED", "AddressClaimed", false},
+    {"REQUEST", "Request", false},
+    {"VDS", "VDS", true},
+    {"CVW", "CVW", true},
+    {"OWN_FUEL", "PFE_OwnFuel", false},
+    {"INPUT_STATUS", "PFE_InputStatus", false},
+    {"DEVICE_STATUS", "PFE_DeviceStatus", false},
 };
 #define N_MSGS (sizeof k_msgs / sizeof k_msgs[0])
-
-/* The PGN macros of firmware/pfe_codec.h, checked against the DBC in the
- * generated source (a PGN changed in the DBC alone stops the build). */
-static const char *const k_pgn_macro[N_MSGS] = {
-    "PFE_PGN_CCVS1",         "PFE_PGN_SSI",          "PFE_PGN_PLATOON_CONFIG",
-    "PFE_PGN_GRADE_PREVIEW", "PFE_PGN_LFE1",         "PFE_PGN_PLATOON_FUEL",
-    "PFE_PGN_HRLFC",         "PFE_PGN_FUEL_PREDICTION", "PFE_PGN_STATUS",
-    "PFE_PGN_ADDRESS_CLAIMED", "PFE_PGN_REQUEST",    "PFE_PGN_VDS",
-    "PFE_PGN_CVW",           "PFE_PGN_OWN_FUEL",     "PFE_PGN_INPUT_STATUS",
-    "PFE_PGN_DEVICE_STATUS",
-};
 
 /* The firmware's integer type of a converted value. */
 typedef enum { FW_I32, FW_U32, FW_U64 } fw_type_t;
 
 /* The signals of pfe_sig_index_t, in its order (message by message). */
 typedef struct {
-    const char *index;   /* enumerator in firmware/pfe_codec.h */
+    const char *index;   /* enumerator of pfe_sig_index_t (OUT.h) */
     unsigned msg;        /* k_msgs[] */
     const char *name;    /* DBC signal */
     const char *fw_unit; /* the unit the firmware converts it to; "" a count or code */
@@ -325,6 +342,7 @@ typedef struct {
     uint32_t priority;
     uint32_t address;
     uint32_t cycle_ms;
+    uint32_t rx_period_ms; /* received: the cycle, or PFEInputPeriod when it is 0; else 0 */
     bool rx;
     bool tx;
     unsigned first;
@@ -505,8 +523,8 @@ static int read_message(const dbc_t *dbc, unsigned k, msg_out_t *o)
 {
     const dbc_message_t *m = dbc_message_by_name(dbc, k_msgs[k].name);
     if (m == NULL) {
-        fprintf(stderr, "dbc2c: %s: no message %s, which the firmware reads or sends (%s)\n",
-                g_dbc_path, k_msgs[k].name, k_msgs[k].index);
+        fprintf(stderr, "dbc2c: %s: no message %s, which the firmware reads or sends (PFE_MSG_%s)\n",
+                g_dbc_path, k_msgs[k].name, k_msgs[k].c_name);
         return -1;
     }
     o->dbc = m;
@@ -538,6 +556,19 @@ static int read_message(const dbc_t *dbc, unsigned k, msg_out_t *o)
     o->tx = strcmp(m->transmitter, MODULE_NODE) == 0;
     if (!o->rx && !o->tx) {
         return fail(m, NULL, "neither sent by %s nor received (%s AnySourceAddress)", MODULE_NODE, RX_ATTR);
+    }
+    int64_t assumed = 0;
+    if ((dbc_attr_def(dbc, DBC_OBJ_MESSAGE, PERIOD_ATTR) != NULL) &&
+        (dbc_message_attr_int(dbc, m, PERIOD_ATTR, &assumed) != 0)) {
+        assumed = 0;
+    }
+    if ((assumed < 0) || (assumed > 65535)) {
+        return fail(m, NULL, "%s %lld outside 0 .. 65535 ms", PERIOD_ATTR, (long long)assumed);
+    }
+    o->rx_period_ms = o->rx ? ((o->cycle_ms != 0U) ? o->cycle_ms : (uint32_t)assumed) : 0U;
+    if (k_msgs[k].watched && (!o->rx || (o->rx_period_ms == 0U))) {
+        return fail(m, NULL, "an input the firmware watches needs %s AnySourceAddress and a period "
+                    "(GenMsgCycleTime, or %s when it is sent on request or on change)", RX_ATTR, PERIOD_ATTR);
     }
     return 0;
 }
@@ -575,21 +606,7 @@ static int write_source(FILE *f, const void *ctx)
             "#include \"pfe_ecu.h\"\n"
             "\n",
             dbc_path);
-    /* the firmware's PGN macros must agree with the DBC */
-    for (unsigned k = 0U; k < N_MSGS; k++) {
-        fprintf(f, "#if %s != %" PRIu32 "UL\n#error \"%s: %s is not the PGN of %s in the DBC (%" PRIu32 ")\"\n#endif\n",
-                k_pgn_macro[k], msgs[k].pgn, dbc_path, k_pgn_macro[k], k_msgs[k].name, msgs[k].pgn);
-    }
-    unsigned n_rx = 0U;
-    for (unsigned k = 0U; k < N_MSGS; k++) {
-        n_rx += msgs[k].rx ? 1U : 0U;
-    }
-    fprintf(f,
-            "#if PFE_ECU_RX_FILTERS != %uU\n"
-            "#error \"%s: %u messages received (PFEReceivedFrom), PFE_ECU_RX_FILTERS differs\"\n"
-            "#endif\n"
-            "\n"
-            "/* Names only host tools and tests read: an image built with\n"
+    fputs("/* Names only host tools and tests read: an image built with\n"
             " * PFE_CODEC_NO_NAMES keeps the tables without them. */\n"
             "#ifdef PFE_CODEC_NO_NAMES\n"
             "#define DBC_TEXT(s) \"\"\n"
@@ -599,18 +616,18 @@ static int write_source(FILE *f, const void *ctx)
             "#define DBC_HOST(...) __VA_ARGS__\n"
             "#endif\n"
             "\n"
-            "const pfe_codec_message_t pfe_codec_messages[PFE_MSG_COUNT] = {\n",
-            n_rx, dbc_path, n_rx);
+          "const pfe_codec_message_t pfe_codec_messages[PFE_MSG_COUNT] = {\n",
+          f);
     for (unsigned k = 0U; k < N_MSGS; k++) {
         const msg_out_t *m = &msgs[k];
         const char *dir = (m->rx && m->tx) ? "PFE_CODEC_DIR_RX | PFE_CODEC_DIR_TX"
                           : m->rx          ? "PFE_CODEC_DIR_RX"
                                            : "PFE_CODEC_DIR_TX";
         fprintf(f,
-                "    [%s] = {.name = DBC_TEXT(\"%s\"), .pgn = %" PRIu32 "UL, .priority = %" PRIu32 "U,\n"
+                "    [PFE_MSG_%s] = {.name = DBC_TEXT(\"%s\"), .pgn = %" PRIu32 "UL, .priority = %" PRIu32 "U,\n"
                 "        .dbc_address = 0x%02" PRIX32 "U, .dlc = %uU, .direction = %s,\n"
                 "        .cycle_ms = %" PRIu32 "U, .first_signal = (uint8_t)%s, .n_signals = %uU},\n",
-                k_msgs[k].index, m->dbc->name, m->pgn, m->priority, m->address, (unsigned)m->dbc->dlc,
+                k_msgs[k].c_name, m->dbc->name, m->pgn, m->priority, m->address, (unsigned)m->dbc->dlc,
                 dir, m->cycle_ms, k_sigs[m->first].index, m->count);
     }
     fputs("};\n\nconst pfe_codec_signal_t pfe_codec_signals[PFE_CODEC_SIGNAL_COUNT] = {\n", f);
@@ -654,18 +671,104 @@ static int write_source(FILE *f, const void *ctx)
     return (fputs("};\n", f) == EOF) ? -1 : 0;
 }
 
+/* The firmware value of a raw count, as the codec decodes it
+ * (firmware/pfe_codec.c fw_of_raw: raw * num / den rounded to nearest, plus
+ * the offset). */
+static int64_t fw_value(const sig_out_t *o, uint32_t raw)
+{
+    const __int128 den = o->fw_scale.den;
+    return (int64_t)(((__int128)raw * o->fw_scale.num + den / 2) / den) + o->fw_offset;
+}
+
+static int write_header(FILE *f, const void *ctx)
+{
+    const tables_t *t = ctx;
+    const msg_out_t *msgs = t->msgs;
+    fprintf(f,
+            "/*\n"
+            " * The DBC's values under the firmware's names, written by dbc2c from\n"
+            " * %s: change the DBC, not this file. Included by firmware/pfe_codec.h;\n"
+            " * the manual is dbc2c --help.\n"
+            " */\n"
+            "#ifndef PFE_DBC_H\n"
+            "#define PFE_DBC_H\n"
+            "\n"
+            "/* Each message's PGN, from its id. */\n",
+            t->dbc_path);
+    for (unsigned k = 0U; k < N_MSGS; k++) {
+        fprintf(f, "#define PFE_PGN_%s %" PRIu32 "UL /* 0x%04" PRIX32 ", %s */\n", k_msgs[k].c_name,
+                msgs[k].pgn, msgs[k].pgn, msgs[k].dbc->name);
+    }
+    fputs("\n/* Each received message's period, ms: GenMsgCycleTime, or for one sent on\n"
+          " * request or on change (GenMsgCycleTime 0) its PFEInputPeriod, the period\n"
+          " * the module assumes before it gives up a silent sender; 0: none. */\n",
+          f);
+    unsigned n_rx = 0U;
+    for (unsigned k = 0U; k < N_MSGS; k++) {
+        if (msgs[k].rx) {
+            fprintf(f, "#define PFE_RX_PERIOD_MS_%s %" PRIu32 "U\n", k_msgs[k].c_name, msgs[k].rx_period_ms);
+            n_rx++;
+        }
+    }
+    fprintf(f,
+            "\n/* Messages the module receives (PFEReceivedFrom AnySourceAddress): one\n"
+            " * receive filter each (pfe_ecu_rx_filters[]). */\n"
+            "#define PFE_ECU_RX_FILTERS %uU\n"
+            "\n"
+            "/* Index of each message in pfe_codec_messages[]. */\n"
+            "typedef enum {\n",
+            n_rx);
+    for (unsigned k = 0U; k < N_MSGS; k++) {
+        fprintf(f, "    PFE_MSG_%s = %u, /* %s */\n", k_msgs[k].c_name, k, msgs[k].dbc->name);
+    }
+    fprintf(f,
+            "    PFE_MSG_COUNT = %u\n"
+            "} pfe_msg_index_t;\n"
+            "\n"
+            "/* Index of each signal in pfe_codec_signals[], message by message. */\n"
+            "typedef enum {\n",
+            (unsigned)N_MSGS);
+    for (unsigned i = 0U; i < N_SIGS; i++) {
+        fprintf(f, "    %s = %u, /* %s.%s */\n", k_sigs[i].index, i, msgs[k_sigs[i].msg].dbc->name,
+                t->sigs[i].dbc->name);
+    }
+    fprintf(f,
+            "    PFE_CODEC_SIGNAL_COUNT = %u\n"
+            "} pfe_sig_index_t;\n"
+            "\n"
+            "/* The [min|max] of each signal with a unit, in the firmware's unit (as\n"
+            " * the codec decodes raw min and raw max: rounded to nearest). */\n",
+            (unsigned)N_SIGS);
+    for (unsigned i = 0U; i < N_SIGS; i++) {
+        const sig_out_t *o = &t->sigs[i];
+        if (k_sigs[i].fw_unit[0] == '\0') {
+            continue;
+        }
+        const char *suffix = (k_sigs[i].type == FW_I32) ? "" : (k_sigs[i].type == FW_U32) ? "U" : "ULL";
+        const int64_t lim[2] = {fw_value(o, o->raw_min), fw_value(o, o->raw_max)};
+        for (unsigned j = 0U; j < 2U; j++) {
+            fprintf(f, "#define %s_%s %s%" PRId64 "%s%s /* %s %s */\n", k_sigs[i].index, (j == 0U) ? "MIN" : "MAX",
+                    (lim[j] < 0) ? "(" : "", lim[j], suffix, (lim[j] < 0) ? ")" : "",
+                    (j == 0U) ? o->dbc->min_text : o->dbc->max_text, o->dbc->unit);
+        }
+    }
+    fputs("\n#endif /* PFE_DBC_H */\n", f);
+    return ferror(f) ? -1 : 0;
+}
+
 int main(int argc, char **argv)
 {
     if (cli_help_asked(argc, argv)) {
         cli_help(k_manual);
         return 0;
     }
-    if (argc != 3) {
+    if (argc != 4) {
         cli_usage(stderr, k_manual, "dbc2c");
         return 2;
     }
     g_dbc_path = argv[1];
     const char *out_path = argv[2];
+    const char *header_path = argv[3];
     dbc_t *dbc = NULL;
     dbc_error_t err;
     if (dbc_parse_file(g_dbc_path, &dbc, &err) != 0) {
@@ -693,7 +796,10 @@ int main(int argc, char **argv)
     }
 
     const tables_t tables = {g_dbc_path, msgs, sigs};
-    rc = (out_file_write(out_path, "dbc2c", write_source, &tables) == 0) ? 0 : 1;
+    rc = ((out_file_write(out_path, "dbc2c", write_source, &tables) == 0) &&
+          (out_file_write(header_path, "dbc2c", write_header, &tables) == 0))
+             ? 0
+             : 1;
     dbc_free(dbc);
     return rc;
 }
