@@ -703,7 +703,8 @@ void object_sim_summary(const object_sim_t *s, model_summary_t *out)
     out->min_gap_m = s->pl->gap;
     out->max_gap_m = s->pl->gap;
     out->steps = s->steps;
-    out->evaluations = s->steps;
+    /* with the followers: one evaluation per position and step */
+    out->evaluations = s->steps * ((s->fuel_by >= OBJECT_FUEL_FOLLOWERS) ? s->fuel_cfg->n_vehicles : 1U);
 }
 
 int object_sim_run(object_sim_t *s, model_summary_t *out)

@@ -27,7 +27,7 @@ static const char k_manual[] =
     "                       [--length-m L] [--spacing gap|headway] [--headway-floor-m F]\n"
     "                       [--margin-kmh M]\n"
     "                       [--step-s DT] [--no-drag-reduction] [--repeat K]\n"
-    "       platoon_compare --only node|object --road FILE.csv [options]\n"
+    "       platoon_compare --only node|object|followers --road FILE.csv [options]\n"
     "       platoon_compare --bench --road FILE.csv [options]\n"
     "\n"
     "The node model against the object model (thesis 5.2).\n"
@@ -45,7 +45,9 @@ static const char k_manual[] =
     "  --step-s DT          time step of both models, 0.001 to 1 (default 0.1)\n"
     "  --no-drag-reduction  no slipstream in either model\n"
     "  --repeat K           host-time runs per model, median printed (default 9)\n"
-    "  --only MODEL         run one model once (node or object)\n"
+    "  --only MODEL         run one model once: node, object, or followers (the object model\n"
+    "                       with the followers driven by their own controller, the last\n"
+    "                       column of the length table)\n"
     "  --bench              host times of the first road as bench: lines\n"
     "  -h, --help           this help\n"
     "\n"
@@ -63,7 +65,8 @@ static const char k_manual[] =
     "more than 32 trucks, or a stall below 1 m/s).\n"
     "\n"
     "--only runs one model once and prints one line: for instruction counts\n"
-    "under callgrind (`--toggle-collect=node_sim_run` or `object_sim_run`).\n"
+    "under callgrind (`--toggle-collect=node_sim_run` or `object_sim_run`,\n"
+    "which the followers run too).\n"
     "--bench prints the host times of the first road as `make bench` lines:\n"
     "\"bench: object_<km>km_host_ms <median> ms\" and the node model's.\n"
     "\n"
@@ -365,7 +368,7 @@ static int parse_args(int argc, char **argv, options_t *o)
             o->roads[o->n_roads++] = v;
         } else if (strcmp(a, "--only") == 0) {
             o->only = v;
-            badv = (strcmp(v, "node") != 0) && (strcmp(v, "object") != 0);
+            badv = (strcmp(v, "node") != 0) && (strcmp(v, "object") != 0) && (strcmp(v, "followers") != 0);
         } else if (strcmp(a, "--vehicles") == 0) {
             badv = cli_parse_double(v, 1.0, NODE_MAX_VEHICLES, &o->n) || (o->n != floor(o->n));
         } else if (strcmp(a, "--set-speed-kmh") == 0) {
@@ -459,8 +462,15 @@ static int run_only(const options_t *o, const node_config_t *cfg, node_road_t *l
 {
     int status = 0;
     model_summary_t s;
-    const int node = strcmp(o->only, "node") == 0;
-    const int rc = node ? run_node(cfg, &loaded[0].road, &s) : run_object(cfg, &loaded[0].road, false, &s);
+    const ref_road_t *road = &loaded[0].road;
+    int rc;
+    if (strcmp(o->only, "node") == 0) {
+        rc = run_node(cfg, road, &s);
+    } else if (strcmp(o->only, "object") == 0) {
+        rc = run_object(cfg, road, false, &s);
+    } else {
+        rc = run_object_as(cfg, road, false, true, OBJECT_FUEL_FOLLOWERS_CONTROLLED, &s);
+    }
     if (rc != 0) {
         fprintf(stderr, "platoon_compare: the %s model stalled on %s\n", o->only, o->roads[0]);
         status = 1;
