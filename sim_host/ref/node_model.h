@@ -168,9 +168,9 @@
  * followers' controller (gains, margin, floor), which the bus does not
  * carry (PFE_PlatoonConfig: size, position, gap, time gap, set speed), and
  * its cost is the node model's: 19.4 million host instructions for the
- * hilly road against the node model's 17.1 million and 6.3 million for
- * the point alone with the policy's drag (callgrind, object_sim_run and
- * node_sim_run).
+ * hilly road against the node model's 17.1 million and the object
+ * model's 1.8 million (callgrind in make bench's thesis-bench,
+ * followers_12km_insn_n5_length and its neighbours).
  *
  * At the start every
  * truck drives at the initial speed at its desired gap, truck i at
