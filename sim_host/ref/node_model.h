@@ -148,7 +148,12 @@
  * (set speed + margin), and whether it then rejoins before the next climb
  * (object model) or chases the platoon over it 12 to 22 m behind (node
  * model) turns on a few tenths of a km/h in what position 0 passes on,
- * the point's speed instead of the node leader's. The grade force is the
+ * the point's speed instead of the node leader's. With 2, 10 and 20
+ * trucks: hilly +0.017, -0.016 and -0.012 %, 249, 247 and 246 routes
+ * within 0.3 %. The floor held in the policy's kinematics instead (below
+ * it the gap held at the floor, each follower's time headway growing as
+ * (L + floor) / v, and the catch-up within the followers' limits) is what
+ * _FOLLOWERS and _LIMITED already do: 208 routes. The grade force is the
  * sum of each position's (eq. 4.9 at each truck's own place, in each
  * position's fuel and in each follower's dynamics); the point itself keeps
  * eq. 4.10 at its place, position 0: with the mean of the grades under the
