@@ -167,7 +167,8 @@
  * the floor, the force limits (the integral held while saturated) and
  * the speed cap gives hilly -0.11 %, 148 routes within 0.3 %, worst
  * -1.05 %, further off than the policy held exactly (_LIMITED, 208). With
- * the point's step 0.2 s (the node model's 0.1 s): hilly +0.050 %, 249
+ * the object model's step (point and followers) 0.2 s, the node model's
+ * kept at 0.1 s: hilly +0.050 %, 249
  * within 0.3 %; 0.25 s: +0.066 %, 242: which routes miss moves with the
  * step, the mean stays below 0.09 %. This object model needs the
  * followers' controller (gains, margin, floor), which the bus does not
