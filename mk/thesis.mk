@@ -20,7 +20,9 @@
 #                   inside node_sim_run and object_sim_run only; both models
 #                   step 0.1 s of time), their ratio, which must reach 0.9 N;
 #                   and the host time of 12 km of the object model (median
-#                   of 21 runs)
+#                   of 21 runs); and the same instructions for five
+#                   16.5 m trucks under the headway policy, with the object
+#                   model's followers driven by their own controller beside
 #   thesis-report   the tables 5.1 to 5.5 analogues on the three roads with
 #                   N = 5, beside the thesis's values (5.4: both fuel models
 #                   fed the node model's mean speeds), the same with 16.5 m
@@ -82,6 +84,17 @@ thesis-bench: $(HOST)/platoon_compare $(VALGRIND_STAMP)
 	    awk -v a=$$node -v b=$$obj -v n=$$n 'BEGIN { r = a / b; \
 	        printf "bench: node_object_insn_ratio_n%d %.2f x\n", n, r; \
 	        if (!(r >= 0.9 * n)) { printf "thesis-bench: ratio %.2f below 0.9 N = %.1f\n", r, 0.9 * n; exit 1 } }'; \
+	done
+	@# Trucks of 16.5 m under the headway policy: the node model, the object
+	@# model and the object model with the followers driven by their own
+	@# controller (sim_host/ref/node_model.h), five trucks, the hilly road.
+	@set -e; for m in node object followers; do \
+	    sim=$$m; test $$m = node || sim=object; \
+	    valgrind --tool=callgrind --callgrind-out-file=$(BUILD)/callgrind/$$m.length \
+	        --toggle-collect=$${sim}_sim_run $(HOST)/platoon_compare --only $$m --road $(ROADS)/hilly.csv \
+	        --vehicles 5 --length-m 16.5 --spacing headway >/dev/null 2>$(BUILD)/callgrind/$$m.length.log \
+	    || { cat $(BUILD)/callgrind/$$m.length.log; exit 1; }; \
+	    echo "bench: $${m}_12km_insn_n5_length $$(awk '/^totals:/ { print $$2 }' $(BUILD)/callgrind/$$m.length) insn"; \
 	done
 	@$(HOST)/platoon_compare --bench --repeat 21 --road $(ROADS)/hilly.csv --vehicles 5
 

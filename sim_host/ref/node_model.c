@@ -208,6 +208,18 @@ static double gap_ahead(const node_sim_t *s, unsigned i)
     return s->position_m[i - 1U] - s->position_m[i] - s->cfg->length_m;
 }
 
+/* A truck's cruise and spacing controllers in equilibrium: each integral
+ * holds the force that keeps the speed v0 against the resistance hold,
+ * within the force limits. */
+static void controllers_init(const node_config_t *cfg, const ref_vehicle_t *t, double v0, double hold,
+                             ref_pi_t *cruise, ref_pi_t *spacing)
+{
+    const double f0 = clamp(hold, -t->brake_max, ref_wheel_force_max(t->power_max, t->traction_max, v0));
+    const double m = t->mass;
+    ref_pi_init(cruise, m * cfg->cruise->kp_milli_per_s / 1000.0, m * cfg->cruise->ki_milli_per_s2 / 1000.0, f0);
+    ref_pi_init(spacing, m * cfg->follow_kp_s2, m * cfg->follow_ki_s3, f0);
+}
+
 int node_sim_init(node_sim_t *s, const node_config_t *cfg, const ref_road_t *road)
 {
     if ((node_config_check(cfg, NULL, 0U) != 0) || (road == NULL) || (road->n_samples < 1U) ||
@@ -230,17 +242,10 @@ int node_sim_init(node_sim_t *s, const node_config_t *cfg, const ref_road_t *roa
         s->truck[i].reduction = phi;
         s->position_m[i] = -(double)i * (cfg->length_m + gap0);
         s->speed_m_s[i] = v0;
-        /* Start in equilibrium: the controller's integral holds the force
-         * that keeps the speed, within the force limits. */
         const ref_vehicle_t *t = &s->truck[i];
         const double hold = ref_vehicle_resistance(t, v0, node_road_grade(road, s->position_m[i]),
                                                    s->gravity);
-        const double f0 = clamp(hold, -t->brake_max,
-                                ref_wheel_force_max(t->power_max, t->traction_max, v0));
-        const double m = t->mass;
-        ref_pi_init(&s->cruise[i], m * cfg->cruise->kp_milli_per_s / 1000.0,
-                    m * cfg->cruise->ki_milli_per_s2 / 1000.0, f0);
-        ref_pi_init(&s->spacing[i], m * cfg->follow_kp_s2, m * cfg->follow_ki_s3, f0);
+        controllers_init(cfg, t, v0, hold, &s->cruise[i], &s->spacing[i]);
     }
     s->min_speed_m_s = INFINITY;
     s->max_speed_m_s = -INFINITY;
@@ -251,26 +256,21 @@ int node_sim_init(node_sim_t *s, const node_config_t *cfg, const ref_road_t *roa
 
 /* The follower's force (the law in node_model.h): spacing PI with a
  * relative-speed term, or its own cruise control, whichever asks for less. */
-static double follower_force(node_sim_t *s, unsigned j, double gap, double f_max)
+static double follower_force(const node_config_t *cfg, double dt, const ref_vehicle_t *t, ref_pi_t *cruise,
+                             ref_pi_t *spacing, double v, double v_ahead, double gap, double f_max)
 {
-    const node_config_t *cfg = s->cfg;
-    const ref_vehicle_t *t = &s->truck[j];
-    const double dt = cfg->step_s;
-    const double v = s->speed_m_s[j];
     const double lo = -t->brake_max;
     const double e = gap - node_desired_gap_m(cfg, v);
-    const double p = t->mass * ((cfg->follow_kp_s2 * e) + (cfg->follow_kv_s * (s->speed_m_s[j - 1U] - v)));
-    ref_pi_t *spacing = &s->spacing[j];
+    const double p = t->mass * ((cfg->follow_kp_s2 * e) + (cfg->follow_kv_s * (v_ahead - v)));
     const double step = spacing->ki * e * dt;
     const double trial = p + spacing->integral + step;
     if (!((trial > f_max) && (step > 0.0)) && !((trial < lo) && (step < 0.0))) {
         spacing->integral = clamp(spacing->integral + step, lo, t->traction_max);
     }
     const double f_gap = clamp(p + spacing->integral, lo, f_max);
-    const double f_cruise = ref_pi_step(&s->cruise[j], cfg->set_speed_m_s + cfg->follow_margin_m_s - v,
-                                        dt, lo, f_max);
+    const double f_cruise = ref_pi_step(cruise, cfg->set_speed_m_s + cfg->follow_margin_m_s - v, dt, lo, f_max);
     if (f_gap <= f_cruise) {
-        s->cruise[j].integral = f_gap;
+        cruise->integral = f_gap;
         return f_gap;
     }
     spacing->integral = clamp(f_cruise - p, lo, t->traction_max);
@@ -309,7 +309,7 @@ int node_sim_step(node_sim_t *s)
         const double f_max = ref_wheel_force_max(t->power_max, t->traction_max, v);
         const double force = (j == 0U)
             ? ref_pi_step(&s->cruise[0], cfg->set_speed_m_s - v, dt, -t->brake_max, f_max)
-            : follower_force(s, j, gap, f_max);
+            : follower_force(cfg, dt, t, &s->cruise[j], &s->spacing[j], v, s->speed_m_s[j - 1U], gap, f_max);
         const double accel = clamp((force - resist) / t->mass, -ACCEL_MAX, ACCEL_MAX);
         const double v1 = clamp(v + (accel * dt), 0.0, SPEED_MAX);
         const double ds = (v + v1) * dt / 2.0;
@@ -482,6 +482,19 @@ static void policy_air_k(const node_config_t *cfg, double mass, double v, double
     *formation = fmax(0.0, (most * mass) - k);
 }
 
+static double position_resistance(const node_config_t *cfg, unsigned i, double gap_m, double v, double grade,
+                                  ref_vehicle_t *t);
+
+/* OBJECT_FUEL_FOLLOWERS_CONTROLLED: follower i's controllers in
+ * equilibrium at speed v0 on a grade, at the policy's gap. */
+static void follower_control_init(const node_config_t *cfg, unsigned i, double v0, double grade, ref_pi_t *cruise,
+                                  ref_pi_t *spacing)
+{
+    ref_vehicle_t t;
+    const double hold = position_resistance(cfg, i, node_desired_gap_m(cfg, v0), v0, grade, &t);
+    controllers_init(cfg, &t, v0, hold, cruise, spacing);
+}
+
 void object_sim_position_fuel(object_sim_t *s, const node_config_t *cfg, object_fuel_t how)
 {
     s->fuel_by = (cfg == NULL) ? OBJECT_FUEL_AGGREGATE : how;
@@ -492,6 +505,10 @@ void object_sim_position_fuel(object_sim_t *s, const node_config_t *cfg, object_
             s->pos_x_m[i] = s->position_m - ((double)i * spacing);
             s->pos_v_m_s[i] = s->speed_m_s;
         }
+    }
+    for (unsigned i = 1U; (s->fuel_by == OBJECT_FUEL_FOLLOWERS_CONTROLLED) && (i < cfg->n_vehicles); i++) {
+        follower_control_init(cfg, i, s->speed_m_s, node_road_grade(s->road, s->pos_x_m[i]), &s->pos_cruise[i],
+                              &s->pos_spacing[i]);
     }
 }
 
@@ -525,6 +542,7 @@ static double followers_step(object_sim_t *s, double x1, double v1, double dt)
     const unsigned n = cfg->n_vehicles;
     const bool headway = cfg->spacing == NODE_SPACING_HEADWAY;
     const bool limited = s->fuel_by == OBJECT_FUEL_FOLLOWERS_LIMITED;
+    const bool controlled = s->fuel_by == OBJECT_FUEL_FOLLOWERS_CONTROLLED;
     const double tau = headway ? node_headway_s(cfg) : cfg->time_gap_s;
     const double c = headway ? 0.0 : (cfg->length_m + cfg->standstill_m);
     const double v_floor = headway ? ((cfg->length_m + cfg->headway_floor_m) / tau) : 0.0;
@@ -539,6 +557,17 @@ static double followers_step(object_sim_t *s, double x1, double v1, double dt)
             : ((i == 0U) ? (x - s->pos_x_m[1] - cfg->length_m) : (s->pos_x_m[i - 1U] - x - cfg->length_m));
         resist[i] = position_resistance(cfg, i, gap, v, node_road_grade(s->road, x + (v * dt / 2.0)), &t[i]);
         if (i == 0U) {
+            continue;
+        }
+        if (controlled) {
+            /* the followers' own law (node_model.h), from the state at the
+             * start of the step, as the node model's synchronous update */
+            const double f_max = ref_wheel_force_max(t[i].power_max, t[i].traction_max, v);
+            const double force = follower_force(cfg, dt, &t[i], &s->pos_cruise[i], &s->pos_spacing[i], v,
+                                                s->pos_v_m_s[i - 1U], gap, f_max);
+            const double accel = clamp((force - resist[i]) / t[i].mass, -ACCEL_MAX, ACCEL_MAX);
+            v_new[i] = clamp(v + (accel * dt), 0.0, SPEED_MAX);
+            x_new[i] = x + ((v + v_new[i]) * dt / 2.0);
             continue;
         }
         double vi = v_new[i - 1U];
@@ -674,7 +703,8 @@ void object_sim_summary(const object_sim_t *s, model_summary_t *out)
     out->min_gap_m = s->pl->gap;
     out->max_gap_m = s->pl->gap;
     out->steps = s->steps;
-    out->evaluations = s->steps;
+    /* with the followers: one evaluation per position and step */
+    out->evaluations = s->steps * ((s->fuel_by >= OBJECT_FUEL_FOLLOWERS) ? s->fuel_cfg->n_vehicles : 1U);
 }
 
 int object_sim_run(object_sim_t *s, model_summary_t *out)

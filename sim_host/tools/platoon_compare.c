@@ -27,7 +27,7 @@ static const char k_manual[] =
     "                       [--length-m L] [--spacing gap|headway] [--headway-floor-m F]\n"
     "                       [--margin-kmh M]\n"
     "                       [--step-s DT] [--no-drag-reduction] [--repeat K]\n"
-    "       platoon_compare --only node|object --road FILE.csv [options]\n"
+    "       platoon_compare --only node|object|followers --road FILE.csv [options]\n"
     "       platoon_compare --bench --road FILE.csv [options]\n"
     "\n"
     "The node model against the object model (thesis 5.2).\n"
@@ -45,7 +45,9 @@ static const char k_manual[] =
     "  --step-s DT          time step of both models, 0.001 to 1 (default 0.1)\n"
     "  --no-drag-reduction  no slipstream in either model\n"
     "  --repeat K           host-time runs per model, median printed (default 9)\n"
-    "  --only MODEL         run one model once (node or object)\n"
+    "  --only MODEL         run one model once: node, object, or followers (the object model\n"
+    "                       with the followers driven by their own controller, the last\n"
+    "                       column of the length table)\n"
     "  --bench              host times of the first road as bench: lines\n"
     "  -h, --help           this help\n"
     "\n"
@@ -63,7 +65,8 @@ static const char k_manual[] =
     "more than 32 trucks, or a stall below 1 m/s).\n"
     "\n"
     "--only runs one model once and prints one line: for instruction counts\n"
-    "under callgrind (`--toggle-collect=node_sim_run` or `object_sim_run`).\n"
+    "under callgrind (`--toggle-collect=node_sim_run` or `object_sim_run`,\n"
+    "which the followers run too).\n"
     "--bench prints the host times of the first road as `make bench` lines:\n"
     "\"bench: object_<km>km_host_ms <median> ms\" and the node model's.\n"
     "\n"
@@ -104,6 +107,12 @@ static const char k_manual[] =
     "  by about 1 %: +0.09 % with the defaults, -0.17 % to +0.31 % with a\n"
     "  followers' speed margin of 0 to 1 km/h, -1.38 % without drag\n"
     "  reduction (where the formation drag does not offset it).\n"
+    "- The followers' controller is what the object model misses for trucks\n"
+    "  of a length: each follower's gap answers the speed ahead and the grade\n"
+    "  under it through that controller. The last column of the length table\n"
+    "  drives each follower by it (the node model's law and gains, at its own\n"
+    "  place) behind the object model's point: with --spacing headway flat\n"
+    "  0.000 %, uphill +0.014 %, hilly +0.011 % (sim_host/ref/node_model.h).\n"
     "\n"
     "Exit status: 0, 1 when a model stalls on a road, 2 on bad arguments or\n"
     "input.\n"
@@ -153,6 +162,7 @@ typedef struct {
     model_summary_t node_point;  /* with a length: the same platoon of point masses */
     double object_trucks_l;      /* object model, grade under each truck */
     double object_drag_l;        /* object model, the drag reduction of the policy's gap at its speed */
+    double object_controlled_l;  /* the same, the followers driven by their own controller */
     double truck_fuel_l[NODE_MAX_VEHICLES], truck_brake_j[NODE_MAX_VEHICLES];
     double point_fuel_l[NODE_MAX_VEHICLES], point_brake_j[NODE_MAX_VEHICLES];
     double ref_fuel_l, ref_time_s;
@@ -205,9 +215,10 @@ static int run_node(const node_config_t *cfg, const ref_road_t *road, model_summ
 }
 
 /* trucks: the grade under each truck (object_sim_truck_grades); policy_drag:
- * the drag reduction of the policy's gap at its speed (object_sim_policy_drag) */
+ * the drag reduction of the policy's gap at its speed (object_sim_policy_drag);
+ * fuel_by: how the fuel is counted (object_sim_position_fuel) */
 static int run_object_as(const node_config_t *cfg, const ref_road_t *road, bool trucks, bool policy_drag,
-                         model_summary_t *out)
+                         object_fuel_t fuel_by, model_summary_t *out)
 {
     if ((object_platoon_build(&g_object_pl, cfg, OBJECT_NOMINAL) != 0) ||
         (object_sim_init(&g_object, &g_object_pl, cfg->cruise, road, cfg->set_speed_m_s,
@@ -221,12 +232,13 @@ static int run_object_as(const node_config_t *cfg, const ref_road_t *road, bool 
     if (policy_drag) {
         object_sim_policy_drag(&g_object, cfg);
     }
+    object_sim_position_fuel(&g_object, cfg, fuel_by);
     return object_sim_run(&g_object, out);
 }
 
 static int run_object(const node_config_t *cfg, const ref_road_t *road, bool trucks, model_summary_t *out)
 {
-    return run_object_as(cfg, road, trucks, false, out);
+    return run_object_as(cfg, road, trucks, false, OBJECT_FUEL_AGGREGATE, out);
 }
 
 /* The object model as ref_sim steps it: 10 m of distance per step. Only for
@@ -284,18 +296,19 @@ static void print_length_tables(const node_config_t *cfg, const road_result_t *r
     }
     printf("\nNode model: fuel with length against point masses, the gap [m], and the object model "
            "against the node model [%%] with the grade at one point (eq. 4.10) and under each truck "
-           "(mean of N places %.1f m apart), and with the drag reduction of the policy's gap at its "
-           "speed instead of eq. 4.7's\n", cfg->length_m + node_desired_gap_m(cfg, cfg->set_speed_m_s));
-    printf("%-12s %12s %12s %9s %9s %9s %14s %10s %10s %10s\n", "road", "node [L]", "L=0 [L]", "length %",
-           "min gap", "max gap", "gap at vmin", "object %", "trucks %", "gap(v) %");
+           "(mean of N places %.1f m apart), with the drag reduction of the policy's gap at its "
+           "speed instead of eq. 4.7's, and with that and the followers driven by their own controller\n",
+           cfg->length_m + node_desired_gap_m(cfg, cfg->set_speed_m_s));
+    printf("%-12s %12s %12s %9s %9s %9s %14s %10s %10s %10s %11s\n", "road", "node [L]", "L=0 [L]", "length %",
+           "min gap", "max gap", "gap at vmin", "object %", "trucks %", "gap(v) %", "followers %");
     for (int r = 0; r < n_roads; r++) {
         const double f = res[r].node.fuel_l;
         const double vmin = res[r].node.min_kmh / 3.6;
-        printf("%-12s %12.4f %12.4f %+9.3f %9.3f %9.3f %7.3f @%3.0f %+10.3f %+10.3f %+10.3f\n", res[r].name, f,
+        printf("%-12s %12.4f %12.4f %+9.3f %9.3f %9.3f %7.3f @%3.0f %+10.3f %+10.3f %+10.3f %+11.3f\n", res[r].name, f,
                res[r].node_point.fuel_l, 100.0 * (f - res[r].node_point.fuel_l) / res[r].node_point.fuel_l,
                res[r].node.min_gap_m, res[r].node.max_gap_m, node_desired_gap_m(cfg, vmin), vmin * 3.6,
                100.0 * (res[r].object.fuel_l - f) / f, 100.0 * (res[r].object_trucks_l - f) / f,
-               100.0 * (res[r].object_drag_l - f) / f);
+               100.0 * (res[r].object_drag_l - f) / f, 100.0 * (res[r].object_controlled_l - f) / f);
     }
     printf("  gap at vmin: the policy's desired gap at the lowest speed any truck reached [m @ km/h]; "
            "thesis: object within 0.053 to 0.25 %% of node (point masses)\n");
@@ -355,7 +368,7 @@ static int parse_args(int argc, char **argv, options_t *o)
             o->roads[o->n_roads++] = v;
         } else if (strcmp(a, "--only") == 0) {
             o->only = v;
-            badv = (strcmp(v, "node") != 0) && (strcmp(v, "object") != 0);
+            badv = (strcmp(v, "node") != 0) && (strcmp(v, "object") != 0) && (strcmp(v, "followers") != 0);
         } else if (strcmp(a, "--vehicles") == 0) {
             badv = cli_parse_double(v, 1.0, NODE_MAX_VEHICLES, &o->n) || (o->n != floor(o->n));
         } else if (strcmp(a, "--set-speed-kmh") == 0) {
@@ -449,8 +462,15 @@ static int run_only(const options_t *o, const node_config_t *cfg, node_road_t *l
 {
     int status = 0;
     model_summary_t s;
-    const int node = strcmp(o->only, "node") == 0;
-    const int rc = node ? run_node(cfg, &loaded[0].road, &s) : run_object(cfg, &loaded[0].road, false, &s);
+    const ref_road_t *road = &loaded[0].road;
+    int rc;
+    if (strcmp(o->only, "node") == 0) {
+        rc = run_node(cfg, road, &s);
+    } else if (strcmp(o->only, "object") == 0) {
+        rc = run_object(cfg, road, false, &s);
+    } else {
+        rc = run_object_as(cfg, road, false, true, OBJECT_FUEL_FOLLOWERS_CONTROLLED, &s);
+    }
     if (rc != 0) {
         fprintf(stderr, "platoon_compare: the %s model stalled on %s\n", o->only, o->roads[0]);
         status = 1;
@@ -492,15 +512,17 @@ static int run_road(const node_config_t *cfg, const ref_road_t *road, int reps, 
         point = *cfg;
         point.length_m = 0.0;
         model_summary_t unused_obj;
-        model_summary_t drag_obj;
+        model_summary_t drag_obj, controlled_obj;
         if ((run_node(&point, road, &res->node_point) != 0) ||
-            (run_object_as(cfg, road, false, true, &drag_obj) != 0) ||
+            (run_object_as(cfg, road, false, true, OBJECT_FUEL_AGGREGATE, &drag_obj) != 0) ||
+            (run_object_as(cfg, road, false, true, OBJECT_FUEL_FOLLOWERS_CONTROLLED, &controlled_obj) != 0) ||
             (run_object(cfg, road, true, &unused_obj) != 0)) {
             fprintf(stderr, "platoon_compare: a model stalled on %s\n", res->path);
             return 1;
         }
         res->object_trucks_l = unused_obj.fuel_l;
         res->object_drag_l = drag_obj.fuel_l;
+        res->object_controlled_l = controlled_obj.fuel_l;
         for (unsigned i = 0U; i < cfg->n_vehicles; i++) {
             res->point_fuel_l[i] = g_node.fuel_l[i];
             res->point_brake_j[i] = g_node.brake_j[i];
