@@ -12,7 +12,9 @@
  * not-available and error codes in its VAL_. Scales, offsets and limits are compared as exact
  * fractions of the numbers written in the DBC, never as doubles. Then the
  * codec's bit placement and unit conversions are checked against an
- * independent reading of the DBC, the pitch-to-grade tangent against libm
+ * independent reading of the DBC, the generated header's PGNs, periods,
+ * receive-filter count and ranges (and pfe_input's periods) against the DBC,
+ * the pitch-to-grade tangent against libm
  * over every SPN 3318 value, and the reader against malformed snippets
  * written to a temporary folder.
  */
@@ -36,6 +38,8 @@
 #include "lib/dbc.h"
 #include "pfe_can.h"
 #include "pfe_codec.h"
+#include "pfe_ecu.h"
+#include "pfe_input.h"
 
 static const char *g_dbc_path;
 static dbc_t *g_dbc;
@@ -88,6 +92,92 @@ static int free_dbc(void **state)
     dbc_free(g_dbc);
     g_dbc = NULL;
     return 0;
+}
+
+/* ------------------------------------------------------------ the generated header */
+
+/* A received message's period in the DBC, read here on its own:
+ * GenMsgCycleTime, or PFEInputPeriod when that is 0. */
+static int64_t dbc_rx_period_ms(const char *message)
+{
+    const dbc_message_t *d = dbc_message_by_name(g_dbc, message);
+    if (d == NULL) {
+        fail_msg("no message %s in the DBC", message);
+    }
+    int64_t cycle = -1;
+    int64_t assumed = -1;
+    assert_int_equal(dbc_message_attr_int(g_dbc, d, "GenMsgCycleTime", &cycle), 0);
+    assert_int_equal(dbc_message_attr_int(g_dbc, d, "PFEInputPeriod", &assumed), 0);
+    return (cycle != 0) ? cycle : assumed;
+}
+
+/* pfe_dbc.h's PGN and period macros, PFE_ECU_RX_FILTERS and the ranges in
+ * firmware units, against the DBC read here; and the inputs' periods in
+ * pfe_input_rules[] are the DBC's. */
+static void test_generated_header_matches_the_dbc(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *message;
+        uint32_t pgn;
+        int64_t period_ms;
+        pfe_input_kind_t input;
+    } k_inputs[] = {
+        {"CCVS1", PFE_PGN_CCVS1, PFE_RX_PERIOD_MS_CCVS1, PFE_IN_SPEED},
+        {"SSI", PFE_PGN_SSI, PFE_RX_PERIOD_MS_SSI, PFE_IN_GRADE},
+        {"VDS", PFE_PGN_VDS, PFE_RX_PERIOD_MS_VDS, PFE_IN_ALTITUDE},
+        {"CVW", PFE_PGN_CVW, PFE_RX_PERIOD_MS_CVW, PFE_IN_MASS},
+        {"LFE1", PFE_PGN_LFE1, PFE_RX_PERIOD_MS_LFE1, PFE_IN_ENGINE_FUEL},
+    };
+    for (size_t k = 0U; k < sizeof k_inputs / sizeof k_inputs[0]; k++) {
+        const dbc_message_t *d = dbc_message_by_name(g_dbc, k_inputs[k].message);
+        assert_non_null(d);
+        print_message("%s: PGN %u, period %lld ms (DBC %lld ms)\n", k_inputs[k].message,
+                      (unsigned)k_inputs[k].pgn, (long long)k_inputs[k].period_ms,
+                      (long long)dbc_rx_period_ms(k_inputs[k].message));
+        assert_int_equal(pfe_j1939_pgn(d->id), k_inputs[k].pgn);
+        assert_int_equal(k_inputs[k].period_ms, dbc_rx_period_ms(k_inputs[k].message));
+        assert_int_not_equal(k_inputs[k].period_ms, 0);
+        assert_int_equal(pfe_input_rules[k_inputs[k].input].pgn, k_inputs[k].pgn);
+        assert_int_equal(pfe_input_rules[k_inputs[k].input].period_us, 1000 * k_inputs[k].period_ms);
+    }
+    /* CVW has no cycle time: its period is the DBC's PFEInputPeriod, 1 s */
+    assert_int_equal(PFE_RX_PERIOD_MS_CVW, 1000);
+    size_t received = 0U;
+    for (size_t i = 0U; i < g_dbc->n_messages; i++) {
+        int64_t rx = 0;
+        assert_int_equal(dbc_message_attr_int(g_dbc, &g_dbc->messages[i], "PFEReceivedFrom", &rx), 0);
+        received += (rx == 1) ? 1U : 0U;
+    }
+    assert_int_equal(PFE_ECU_RX_FILTERS, received);
+    /* ranges: [min|max] of the DBC text times the unit's factor */
+    static const struct {
+        const char *message, *signal;
+        int64_t fw_min, fw_max;
+        int64_t per_unit; /* firmware units per DBC unit */
+    } k_ranges[] = {
+        {"VDS", "Altitude", PFE_CSIG_VDS_ALTITUDE_MIN, PFE_CSIG_VDS_ALTITUDE_MAX, 1000},  /* m -> mm */
+        {"SSI", "PitchAngle", PFE_CSIG_SSI_PITCH_ANGLE_MIN, PFE_CSIG_SSI_PITCH_ANGLE_MAX, 1000000}, /* deg -> udeg */
+        {"CVW", "GrossCombinationVehicleWeight", PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT_MIN,
+         PFE_CSIG_CVW_GROSS_COMBINATION_WEIGHT_MAX, 1},                                     /* kg */
+        {"PFE_FuelPrediction", "PredictedFuel", PFE_CSIG_FP_PREDICTED_FUEL_MIN, PFE_CSIG_FP_PREDICTED_FUEL_MAX,
+         1000000},                                                                          /* L -> uL */
+    };
+    for (size_t k = 0U; k < sizeof k_ranges / sizeof k_ranges[0]; k++) {
+        const dbc_message_t *m = dbc_message_by_name(g_dbc, k_ranges[k].message);
+        assert_non_null(m);
+        const dbc_signal_t *d = dbc_signal_by_name(m, k_ranges[k].signal);
+        assert_non_null(d);
+        int64_t n;
+        int64_t den;
+        dbc_frac(d->min_text, &n, &den);
+        print_message("%s.%s: [%lld|%lld] in firmware units, DBC [%s|%s]\n", k_ranges[k].message,
+                      k_ranges[k].signal, (long long)k_ranges[k].fw_min, (long long)k_ranges[k].fw_max,
+                      d->min_text, d->max_text);
+        assert_true(frac_equal(n * k_ranges[k].per_unit, den, k_ranges[k].fw_min, 1));
+        dbc_frac(d->max_text, &n, &den);
+        assert_true(frac_equal(n * k_ranges[k].per_unit, den, k_ranges[k].fw_max, 1));
+    }
 }
 
 /* ------------------------------------------------------------ DBC against the codec */
@@ -779,6 +869,7 @@ int main(int argc, char **argv)
     }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_codec_message_is_in_the_dbc),
+        cmocka_unit_test(test_generated_header_matches_the_dbc),
         cmocka_unit_test(test_every_codec_signal_matches_the_dbc),
         cmocka_unit_test(test_every_dbc_signal_is_in_the_codec),
         cmocka_unit_test(test_value_tables_match_the_codec),
