@@ -105,7 +105,9 @@ static uint64_t rate_times_dt(uint32_t rate_per_s, uint64_t dt_us)
     const uint32_t r1 = rem / 1000U;
     const uint32_t r0 = rem - (r1 * 1000U);
     const uint32_t inner = (rate_per_s * r1) + ((rate_per_s * r0) / 1000U);
-    return (uint64_t)(rate_per_s * q) + (uint64_t)(inner / 1000U);
+    const uint32_t whole = rate_per_s * q;
+    const uint32_t part = inner / 1000U;
+    return (uint64_t)whole + part;
 }
 
 /* Step 2: within range, and within rate * dt + margin of the reference. */
