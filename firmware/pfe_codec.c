@@ -82,8 +82,9 @@ static uint32_t sig_mask(const pfe_codec_signal_t *sig)
 }
 
 /* The signal's bits of a payload; the signal fits (sig_fits()). Every shift
- * count is 0 .. 31. */
-static uint32_t payload_get(payload_t p, const pfe_codec_signal_t *sig)
+ * count is 0 .. 31. Inlined: with a table entry named by a constant index
+ * its tests fold away. */
+static ALWAYS_INLINE uint32_t payload_get(payload_t p, const pfe_codec_signal_t *sig)
 {
     const uint32_t start = sig->start_bit;
     uint32_t v;
@@ -135,11 +136,10 @@ void pfe_codec_raw_put(uint8_t data[PFE_CAN_MAX_DLC], const pfe_codec_signal_t *
     payload_store(data, p);
 }
 
-pfe_sig_state_t pfe_codec_raw_state(const pfe_codec_signal_t *sig, uint32_t raw)
+/* pfe_codec_raw_state() for a signal that is not NULL; inlined, as
+ * payload_get(). */
+static ALWAYS_INLINE pfe_sig_state_t raw_state_of(const pfe_codec_signal_t *sig, uint32_t raw)
 {
-    if (sig == NULL) {
-        return PFE_SIG_NOT_AVAILABLE;
-    }
     if (sig->ranges == PFE_CODEC_RANGES_J1939) {
         if (sig->length == 2U) {
             if (raw == 3U) {
@@ -168,6 +168,14 @@ pfe_sig_state_t pfe_codec_raw_state(const pfe_codec_signal_t *sig, uint32_t raw)
         return PFE_SIG_OUT_OF_RANGE;
     }
     return PFE_SIG_VALID;
+}
+
+pfe_sig_state_t pfe_codec_raw_state(const pfe_codec_signal_t *sig, uint32_t raw)
+{
+    if (sig == NULL) {
+        return PFE_SIG_NOT_AVAILABLE;
+    }
+    return raw_state_of(sig, raw);
 }
 
 uint32_t pfe_codec_raw_code(const pfe_codec_signal_t *sig, pfe_sig_state_t state)
@@ -261,6 +269,30 @@ static ALWAYS_INLINE pfe_sig_i32_t dec_i32(const pfe_can_frame_t *frame, pfe_sig
 {
     uint32_t raw;
     const pfe_sig_state_t st = get_raw(frame, i, &raw);
+    const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? (int32_t)fw_of_raw(&pfe_codec_signals[i], raw) : 0, st};
+    return out;
+}
+
+/* dec_u32() and dec_i32() of a payload loaded once, every step inlined: for
+ * the frames of every tick (SSI, CCVS1), where the generic path's calls
+ * cost more than the decoding. Same results. */
+static ALWAYS_INLINE pfe_sig_state_t raw_at(payload_t p, pfe_sig_index_t i, uint32_t *raw)
+{
+    *raw = payload_get(p, &pfe_codec_signals[i]);
+    return raw_state_of(&pfe_codec_signals[i], *raw);
+}
+static ALWAYS_INLINE pfe_sig_u32_t dec_u32_at(payload_t p, pfe_sig_index_t i)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = raw_at(p, i, &raw);
+    const pfe_sig_u32_t out = {(st == PFE_SIG_VALID) ? (uint32_t)fw_of_raw(&pfe_codec_signals[i], raw) : 0U,
+                               st};
+    return out;
+}
+static ALWAYS_INLINE pfe_sig_i32_t dec_i32_at(payload_t p, pfe_sig_index_t i)
+{
+    uint32_t raw;
+    const pfe_sig_state_t st = raw_at(p, i, &raw);
     const pfe_sig_i32_t out = {(st == PFE_SIG_VALID) ? (int32_t)fw_of_raw(&pfe_codec_signals[i], raw) : 0, st};
     return out;
 }
@@ -396,7 +428,7 @@ int pfe_codec_decode_ccvs1(const pfe_can_frame_t *frame, pfe_msg_ccvs1_t *out)
     if (rc != PFE_OK) {
         return rc;
     }
-    out->speed_mm_s = dec_i32(frame, PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED); /* CCVS1.WheelBasedVehicleSpeed (SPN 84) */
+    out->speed_mm_s = dec_i32_at(payload_load(frame->data), PFE_CSIG_CCVS1_WHEEL_BASED_VEHICLE_SPEED); /* CCVS1.WheelBasedVehicleSpeed (SPN 84) */
     return PFE_OK;
 }
 
@@ -425,9 +457,10 @@ int pfe_codec_decode_ssi(const pfe_can_frame_t *frame, pfe_msg_ssi_t *out)
     if (rc != PFE_OK) {
         return rc;
     }
-    out->pitch_udeg = dec_i32(frame, PFE_CSIG_SSI_PITCH_ANGLE);          /* SSI.PitchAngle (SPN 3318) */
-    out->roll_udeg = dec_i32(frame, PFE_CSIG_SSI_ROLL_ANGLE);            /* SSI.RollAngle (SPN 3319) */
-    out->pitch_fom = dec_u32(frame, PFE_CSIG_SSI_PITCH_ANGLE_FOM);         /* SSI.PitchAngleFigureOfMerit (SPN 3323) */
+    const payload_t p = payload_load(frame->data);
+    out->pitch_udeg = dec_i32_at(p, PFE_CSIG_SSI_PITCH_ANGLE);          /* SSI.PitchAngle (SPN 3318) */
+    out->roll_udeg = dec_i32_at(p, PFE_CSIG_SSI_ROLL_ANGLE);            /* SSI.RollAngle (SPN 3319) */
+    out->pitch_fom = dec_u32_at(p, PFE_CSIG_SSI_PITCH_ANGLE_FOM);       /* SSI.PitchAngleFigureOfMerit (SPN 3323) */
     return PFE_OK;
 }
 
@@ -763,6 +796,16 @@ pfe_sig_state_t pfe_preview_grade_ppm(const pfe_preview_t *pv, uint32_t index, i
     return st;
 }
 
+/* grade_ppm[k] for k = k0, k0 + 3, ... below n: samples first + k, all
+ * carried in signal sig. */
+static ALWAYS_INLINE void copy_every_third(const pfe_preview_t *pv, uint32_t first, uint32_t n, uint32_t k0,
+                                           pfe_sig_index_t sig, int32_t *grade_ppm)
+{
+    for (uint32_t k = k0; k < n; k += PFE_PREVIEW_SAMPLES_PER_FRAME) {
+        grade_ppm[k] = (int32_t)fw_of_raw(&pfe_codec_signals[sig], pv->raw[first + k]);
+    }
+}
+
 uint32_t pfe_preview_copy_ppm(const pfe_preview_t *pv, uint32_t first, uint32_t count,
                               int32_t *grade_ppm)
 {
@@ -771,11 +814,13 @@ uint32_t pfe_preview_copy_ppm(const pfe_preview_t *pv, uint32_t first, uint32_t 
         return 0U;
     }
     const uint32_t n = ((pv->sample_count - first) < count) ? (pv->sample_count - first) : count;
-    uint32_t slot = first % PFE_PREVIEW_SAMPLES_PER_FRAME;
-    for (uint32_t k = 0U; k < n; k++) {
-        grade_ppm[k] = (int32_t)fw_of_raw(&pfe_codec_signals[k_sample_sig[slot]], pv->raw[first + k]);
-        slot = (slot == (PFE_PREVIEW_SAMPLES_PER_FRAME - 1U)) ? 0U : (slot + 1U);
-    }
+    /* sample first + k came in slot (first + k) % 3: GradeSample s holds
+     * k = (s - first) mod 3, 3 + that, ... Each pass names its signal as a
+     * constant, so that its scale folds into the loop as it did for one. */
+    const uint32_t slot = first % PFE_PREVIEW_SAMPLES_PER_FRAME;
+    copy_every_third(pv, first, n, (3U - slot) % 3U, PFE_CSIG_GP_GRADE_SAMPLE0, grade_ppm);
+    copy_every_third(pv, first, n, (4U - slot) % 3U, PFE_CSIG_GP_GRADE_SAMPLE1, grade_ppm);
+    copy_every_third(pv, first, n, (5U - slot) % 3U, PFE_CSIG_GP_GRADE_SAMPLE2, grade_ppm);
     return n;
 }
 

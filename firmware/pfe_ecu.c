@@ -1020,16 +1020,21 @@ uint32_t pfe_ecu_tick(pfe_ecu_t *ecu, uint64_t now_us, pfe_can_frame_t *tx, uint
         due |= out_due(t, OUT_OWN_FUEL, 2U) ? (1U << (uint32_t)OUT_OWN_FUEL) : 0U;
         due |= out_due(t, OUT_INPUT_STATUS, 5U) ? (1U << (uint32_t)OUT_INPUT_STATUS) : 0U;
         due |= out_due(t, OUT_DEVICE_STATUS, 6U) ? (1U << (uint32_t)OUT_DEVICE_STATUS) : 0U;
-        if (!j1939_fuel_due(ecu, ecu->other_lfe1_seen, ecu->other_lfe1_us, period_us(PFE_MSG_LFE1))) {
+        /* most ticks send nothing: each test below only when it can matter */
+        if (((due & (1U << (uint32_t)OUT_LFE1)) != 0U) &&
+            !j1939_fuel_due(ecu, ecu->other_lfe1_seen, ecu->other_lfe1_us, period_us(PFE_MSG_LFE1))) {
             due &= ~(1U << (uint32_t)OUT_LFE1);
         }
-        if (!j1939_fuel_due(ecu, ecu->other_hrlfc_seen, ecu->other_hrlfc_us, period_us(PFE_MSG_HRLFC))) {
+        if (((due & (1U << (uint32_t)OUT_HRLFC)) != 0U) &&
+            !j1939_fuel_due(ecu, ecu->other_hrlfc_seen, ecu->other_hrlfc_us, period_us(PFE_MSG_HRLFC))) {
             due &= ~(1U << (uint32_t)OUT_HRLFC);
         }
-        for (uint32_t k = 0U; k < OUT_COUNT; k++) {
-            if ((due & (1U << k)) != 0U) {
-                encode_output(ecu, k, &f);
-                n = emit(ecu, tx, n, tx_cap, &f);
+        if (due != 0U) {
+            for (uint32_t k = 0U; k < OUT_COUNT; k++) {
+                if ((due & (1U << k)) != 0U) {
+                    encode_output(ecu, k, &f);
+                    n = emit(ecu, tx, n, tx_cap, &f);
+                }
             }
         }
         ecu->request_pending = 0U;

@@ -85,6 +85,31 @@ static uint32_t abs_diff(int32_t a, int32_t b)
 
 typedef enum { PLAUSIBLE, OUT_OF_RANGE, TOO_FAST, TOO_EARLY } plausibility_t;
 
+/* floor(rate * dt_us / 10^6), exact, in 32-bit operations (a 64-bit
+ * division is a library call of about 120 instructions on the Cortex-M4,
+ * on every frame). For rate < 2^18 and any dt_us: with dt_us = q 10^6 +
+ * r1 10^3 + r0 (r1, r0 < 1000),
+ *     rate dt_us / 10^6 = rate q + (rate r1 + rate r0 / 10^3) / 10^3,
+ * and the floor of the inner quotient may be taken first (the outer
+ * division's result moves at whole numbers only). Every product and sum is
+ * below 2^31; the result is below rate * 4295 < 2^31. A larger rate takes
+ * the 64-bit division. */
+static uint64_t rate_times_dt(uint32_t rate_per_s, uint64_t dt_us)
+{
+    if ((rate_per_s >= (1UL << 18)) || (dt_us > UINT32_MAX)) {
+        return ((uint64_t)rate_per_s * dt_us) / 1000000U;
+    }
+    const uint32_t dt = (uint32_t)dt_us;
+    const uint32_t q = dt / 1000000U;
+    const uint32_t rem = dt - (q * 1000000U);
+    const uint32_t r1 = rem / 1000U;
+    const uint32_t r0 = rem - (r1 * 1000U);
+    const uint32_t inner = (rate_per_s * r1) + ((rate_per_s * r0) / 1000U);
+    const uint32_t whole = rate_per_s * q;
+    const uint32_t part = inner / 1000U;
+    return (uint64_t)whole + part;
+}
+
 /* Step 2: within range, and within rate * dt + margin of the reference. */
 static plausibility_t plausible(const pfe_input_t *in, int32_t value, uint64_t rx_us)
 {
@@ -105,8 +130,7 @@ static plausibility_t plausible(const pfe_input_t *in, int32_t value, uint64_t r
     if (dt_us > stale_us(in)) {
         dt_us = stale_us(in);
     }
-    /* rate * dt: rate < 2^18, dt <= 3 s: below 2^40 */
-    const uint64_t allowed = (((uint64_t)r->max_rate_per_s * dt_us) / 1000000U) + r->margin;
+    const uint64_t allowed = rate_times_dt(r->max_rate_per_s, dt_us) + r->margin;
     return ((uint64_t)abs_diff(value, in->last_value) <= allowed) ? PLAUSIBLE : TOO_FAST;
 }
 

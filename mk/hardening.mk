@@ -31,7 +31,8 @@
 #                  linker script's stack (__stack_size, 4 KiB); fails when it
 #                  does not fit, or refuses a cycle, an indirect call with no
 #                  target listed in scripts/stack_indirect.txt, or a stored
-#                  function address not listed there. The bench image's
+#                  function address not listed there (words of string
+#                  literals, .rodata.str* in the map file, are not addresses). The bench image's
 #                  bound is checked against its measured high-water mark.
 #                  tests/stack/refusals.sh shows it refuses and fails.
 #   test-hardening all three

@@ -145,6 +145,56 @@ def words(data):
     return [int.from_bytes(data[i:i + 4], "little") for i in range(0, len(data) - 3, 4)]
 
 
+def section_addr(elf, name):
+    """The load address of a section (readelf -S), None if absent."""
+    for line in run([READELF, "-S", "-W", elf]).splitlines():
+        m = re.search(r"\]\s+(\S+)\s+\S+\s+([0-9a-f]{8})\s", line)
+        if m and m.group(1) == name:
+            return int(m.group(2), 16)
+    return None
+
+
+def string_ranges(elf):
+    """Address ranges of the image's string literals: the .rodata.str*
+    input sections of its map file (NAME.map beside NAME.elf), which hold
+    NUL-terminated strings only. A word there is text, never an address
+    (")\n" and its padding read as 0x00000a29). No map file: none."""
+    path = elf[:-4] + ".map" if elf.endswith(".elf") else elf + ".map"
+    if not os.path.exists(path):
+        return []
+    out = []
+    pending = False
+    with open(path, errors="replace") as f:
+        for line in f:
+            m = re.match(r"^ (\.rodata\.str\S*)(.*)$", line)
+            rest = None
+            if m:
+                rest = m.group(2)
+                pending = rest.strip() == ""
+            elif pending:
+                rest = line
+                pending = False
+            if rest:
+                a = re.match(r"^\s+0x([0-9a-f]+)\s+0x([0-9a-f]+)", rest)
+                if a and int(a.group(2), 16) > 0:
+                    out.append((int(a.group(1), 16), int(a.group(1), 16) + int(a.group(2), 16)))
+    return out
+
+
+def data_words(elf, name):
+    """The words of a data section, but for those inside string literals."""
+    data = section_bytes(elf, name)
+    base = section_addr(elf, name)
+    strings = string_ranges(elf) if base is not None else []
+    out = []
+    for i in range(0, len(data) - 3, 4):
+        a = (base or 0) + i
+        if any(lo <= a and a + 4 <= hi for lo, hi in strings):
+            continue
+        out.append(int.from_bytes(data[i:i + 4], "little"))
+    return out
+
+
 INSN = re.compile(r"^\s*([0-9a-f]+):\s+(\S+)\s*(.*)$")
 TARGET = re.compile(r"^([0-9a-f]+)\s+<([^>+]+)(\+0x[0-9a-f]+)?>")
 REGLIST = re.compile(r"\{([^}]*)\}")
@@ -436,11 +486,11 @@ def main():
     listed = set(init_targets)
     for e in indirect:
         listed.update(t for t in e["targets"] if (t != "@init_array") and not t.startswith("!"))
-    data_words = []
+    stored = []
     for sec in (".rodata", ".data"):
-        data_words += words(section_bytes(args.elf, sec))
+        stored += data_words(args.elf, sec)
     by_thumb_addr = {a | 1: n for n, (a, s) in funcs.items()}
-    for w in set(pool_words + data_words):
+    for w in set(pool_words + stored):
         n = by_thumb_addr.get(w)
         if n is not None and n not in listed:
             refusals.append("the address of %s is stored in the image, but no indirect call lists it "

@@ -4,8 +4,11 @@
 #   1. the ECU image when no indirect call has its targets listed,
 #   2. a call graph with a cycle (an edge from a leaf back to main added to
 #      the self-check image's graph),
+#   3. the ECU image when a function whose address it stores (read_host,
+#      main_ecu.c's semihosting read, set as the replay backend's callback)
+#      is listed as no indirect call's target,
 # and fail
-#   3. the self-check image linked with a 512-byte stack
+#   4. the self-check image linked with a 512-byte stack
 #      (STACK_OUT/small/pfe_mps2.elf), which its worst case exceeds.
 #
 #   tests/stack/refusals.sh STACK_OUT M4_OUT CHECK_COMMAND...
@@ -50,7 +53,18 @@ echo "edge: { sourcename: \"${prefix}line_u64\" targetname: \"${prefix}main\" }"
 expect "recursion" "refused: recursion: .*main > line_u64 > main" \
     "$@" --elf "$m4/pfe_mps2.elf" --ci "$tmp/cycle.ci"
 
-# 3. A stack smaller than the worst case.
+# 3. A stored address no entry lists: bus->read( given write_host only.
+sed -e 's/^\(hal\/replay\/hal_replay.c  *bus->read(  *\)read_host$/\1write_host/' \
+    scripts/stack_indirect.txt >"$tmp/unlisted.txt"
+if cmp -s scripts/stack_indirect.txt "$tmp/unlisted.txt"; then
+    echo "stack-refusals: stored address: scripts/stack_indirect.txt has no 'bus->read(  read_host' entry to change"
+    exit 1
+fi
+expect "stored address" "refused: the address of read_host is stored in the image" \
+    "$@" --indirect "$tmp/unlisted.txt" --elf "$m4/pfe_ecu_mps2.elf" \
+    --ci "$out"/pfe_ecu_mps2/*.ci
+
+# 4. A stack smaller than the worst case.
 expect "512-byte stack" "FAILED: the worst case exceeds the stack" \
     "$@" --elf "$out/small/pfe_mps2.elf" --ci "$out"/small/*.ci
-echo "stack-refusals: the check refuses or fails in all three cases, as it should"
+echo "stack-refusals: the check refuses or fails in all four cases, as it should"

@@ -215,6 +215,39 @@ static void test_grade_plausibility(void **state)
     assert_int_equal(g_in.value, 27000);
 }
 
+/* The rate bound rounds rate * dt down, exactly, at any interval: grade
+ * 200000 ppm/s, margin 5000 ppm. dt 12345 us: 2469 + 5000 = 7469 allowed;
+ * dt 29999 us (below the stale cap of 3 periods, 30000 us): 5999 + 5000 =
+ * 10999; dt 1 us: 0 + 5000; and an interval of over a second below. */
+static void test_grade_rate_bound_exact(void **state)
+{
+    (void)state;
+    static const struct {
+        uint32_t dt_us;
+        int32_t allowed;
+    } k_cases[] = {{12345U, 7469}, {29999U, 10999}, {1U, 5000}, {10000U, 7000}, {30000U, 11000}};
+    for (size_t k = 0U; k < sizeof k_cases / sizeof k_cases[0]; k++) {
+        for (int32_t extra = 0; extra <= 1; extra++) {
+            pfe_input_init(&g_in, PFE_IN_GRADE, PFE_INPUT_NO_SOURCE);
+            assert_int_equal(pfe_input_take(&g_in, ENGINE, OK_, 0, T0), PFE_INPUT_ACCEPTED);
+            const pfe_input_verdict_t v =
+                pfe_input_take(&g_in, ENGINE, OK_, k_cases[k].allowed + extra, T0 + k_cases[k].dt_us);
+            print_message("dt %u us, change %d ppm: verdict %d\n", (unsigned)k_cases[k].dt_us,
+                          (int)(k_cases[k].allowed + extra), (int)v);
+            assert_int_equal(v, (extra == 0) ? PFE_INPUT_ACCEPTED : PFE_INPUT_REJECTED);
+        }
+    }
+    /* over a second: altitude 15000 mm/s, margin 10000 mm, stale after 3 s;
+     * dt 2345678 us: floor(35185.17) + 10000 = 45185 */
+    for (int32_t extra = 0; extra <= 1; extra++) {
+        pfe_input_init(&g_in, PFE_IN_ALTITUDE, PFE_INPUT_NO_SOURCE);
+        assert_int_equal(pfe_input_take(&g_in, ENGINE, OK_, 100000, T0), PFE_INPUT_ACCEPTED);
+        const pfe_input_verdict_t v = pfe_input_take(&g_in, ENGINE, OK_, 100000 + 45185 + extra, T0 + 2345678U);
+        print_message("altitude, dt 2345678 us, change %d mm: verdict %d\n", (int)(45185 + extra), (int)v);
+        assert_int_equal(v, (extra == 0) ? PFE_INPUT_ACCEPTED : PFE_INPUT_REJECTED);
+    }
+}
+
 /* Mass and engine fuel rate: range only. */
 static void test_range_only_inputs(void **state)
 {
@@ -348,6 +381,7 @@ int main(void)
         cmocka_unit_test(test_range_only_inputs),
         cmocka_unit_test(test_counts_senders),
         cmocka_unit_test(test_altitude_grade_of_a_steady_climb),
+        cmocka_unit_test(test_grade_rate_bound_exact),
         cmocka_unit_test(test_altitude_noise_is_not_grade),
         cmocka_unit_test(test_altitude_standing_and_gaps),
         cmocka_unit_test(test_altitude_grade_clamped),
