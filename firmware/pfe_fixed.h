@@ -64,6 +64,13 @@ static inline int64_t pfe_mul_q(int64_t a, int32_t b, uint32_t shift)
 }
 
 /*
+ * a * b / 2^shift rounded to nearest (halves up), 1 <= shift <= 63, from the
+ * exact 128-bit product (four 32 x 32 -> 64 bit multiplies); saturates at
+ * UINT64_MAX. For sums turned into results once per call, not per step.
+ */
+uint64_t pfe_mul_shift_round_u64(uint64_t a, uint64_t b, uint32_t shift);
+
+/*
  * num / den rounded down (truncated), any num; *rem (may be NULL) receives
  * num % den. 0 and remainder 0 when den is 0. Exact for every input.
  * Cost: for den <= PFE_UDIV_SMALL_MAX, three 32-bit divisions (long division

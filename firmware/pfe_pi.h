@@ -52,8 +52,9 @@ static inline int32_t pfe_pi_step_in_range(pfe_pi_t *pi, int32_t error, uint32_t
 {
     const int32_t e = pfe_clamp_i32(error, -PFE_PI_ERROR_MAX, PFE_PI_ERROR_MAX);
 
-    /* kp < 2^35 and |e| <= 2^25: below 2^60; P clamped to +-2^27. */
-    const int32_t p = (int32_t)pfe_clamp_i64(pfe_mul_q(pi->kp_q32, e, 32U), -(1 << 27), 1 << 27);
+    /* kp < 2^35 and |e| <= 2^25: below 2^60, so kp e / 2^32 fits 32 bits;
+     * P clamped to +-2^27 there. */
+    const int32_t p = pfe_clamp_i32((int32_t)pfe_mul_q(pi->kp_q32, e, 32U), -(1 << 27), 1 << 27);
     /* ki * e / 2^24 is U/s * 2^8 (< 2^36); times dt (<= 2^20) / 2^20 is
      * U * 2^4 (< 2^36), clamped to +-2^29 so that I + step fits 32 bits. */
     const int64_t rate_q8 = pfe_mul_q(pi->ki_q32, e, 24U);

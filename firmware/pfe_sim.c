@@ -10,13 +10,23 @@
 #define POW5_9 1953125ULL
 #define FUEL_FORCE_MAX_Q2 ((int32_t)1 << 27) /* 33.5 MN: above any platoon's traction */
 
-static int32_t grade_at(const pfe_road_t *road, uint32_t position_mm)
+/* The road sample under position_mm (the last one beyond the road's end). */
+static uint32_t sample_at(const pfe_road_t *road, uint32_t position_mm)
 {
     uint32_t k = position_mm / road->spacing_mm;
     if (k >= road->n_samples) {
         k = road->n_samples - 1U;
     }
-    return road->grade_ppm[k];
+    return k;
+}
+
+/* Air drag in N * 2^2 (eq. 4.6): air_q32 [N per (mm/s)^2 * 2^32] below
+ * 2^22 (a platoon's sum, as unsigned 32 bits) times v2 < 2^33, over 2^30,
+ * rounded: one multiply and one multiply-accumulate, below 2^56. */
+static inline int64_t air_q2(int64_t air_q32, uint64_t v2)
+{
+    const uint64_t product = ((uint64_t)(uint32_t)air_q32 * v2) + ((uint64_t)1 << 29);
+    return (int64_t)(product >> 30);
 }
 
 /* Fa + Fr + Fg of the object model at speed v and grade (eq. 4.6 to 4.10),
@@ -26,9 +36,9 @@ static int32_t grade_at(const pfe_road_t *road, uint32_t position_mm)
  * air_q32 < 2^22 and v < 2^17: below 2^56; weight_q36 < 2^42 (3200 t) and
  * |grade| <= 2^19 (checked at init): below 2^61. The sum, at most about
  * 3.4e7 N, fits 32 bits in N * 2^2. */
-static int32_t resistance_q2(const pfe_sim_t *sim, int64_t v2, int32_t grade_ppm)
+static int32_t resistance_q2(const pfe_sim_t *sim, uint64_t v2, int32_t grade_ppm)
 {
-    return (int32_t)(pfe_rshift_round(sim->platoon->object.air_q32 * v2, 30U) + sim->roll_q2 +
+    return (int32_t)(air_q2(sim->platoon->object.air_q32, v2) + sim->roll_q2 +
                      pfe_rshift_round(sim->weight_q36 * (int64_t)grade_ppm, 34U));
 }
 
@@ -101,6 +111,10 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     sim->steps = 0U;
     sim->time_q16 = 0U;
     sim->fuel_nl = 0U;
+    sim->work_q2_mm = 0U;
+    sim->pull_time_q16 = 0U;
+    sim->step_work_q2_mm = 0U;
+    sim->step_pull_q16 = 0U;
     sim->grade_ppm = road->grade_ppm[0];
     sim->accel_um_s2 = 0;
     sim->fuel_step_nl = 0U;
@@ -136,7 +150,7 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
         }
     }
     const uint64_t v2_init = (uint64_t)initial_speed_mm_s * (uint32_t)initial_speed_mm_s;
-    const int32_t hold = (resistance_q2(sim, (int64_t)v2_init, road->grade_ppm[0]) + 2) / 4;
+    const int32_t hold = (resistance_q2(sim, v2_init, road->grade_ppm[0]) + 2) / 4;
     const int32_t f_max = pfe_platoon_force_max_v2_n(obj, sim->formation_air_q32, initial_speed_mm_s,
                                                      v2_init);
     sim->wheel_force_n = pfe_clamp_i32(hold, -(int32_t)obj->brake_max_n, f_max);
@@ -167,10 +181,10 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
     /* ds <= 16000 mm: ds * 2^16 < 2^30; v >= 1000 mm/s: dt <= 16 s (2^20 in Q16). */
     const uint32_t dt_q16 = ((ds << 16) + (v / 2U)) / v;
 
-    const int32_t grade = grade_at(road, sim->position_mm + (ds / 2U));
+    const uint32_t sample = sample_at(road, sim->position_mm + (ds / 2U));
+    const int32_t grade = road->grade_ppm[sample];
     const uint64_t v2u = (uint64_t)v * v;
-    const int64_t v2 = (int64_t)v2u;
-    const int32_t resist_q2 = resistance_q2(sim, v2, grade);
+    const int32_t resist_q2 = resistance_q2(sim, v2u, grade);
     /* Limits in order and within range (pfe_platoon_force_max_v2_n()), dt <= 2^20 (above). */
     const int32_t f_max = pfe_platoon_force_max_v2_n(obj, sim->formation_air_q32, v_mm_s, v2u);
     const int32_t force = pfe_pi_step_in_range(&sim->pi, sim->set_speed_um_s - sim->speed_um_s,
@@ -186,37 +200,31 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
      * (mass_fuel_q32 < 2^35, |a| <= 2^24.3), the sum below 2^30. */
     const int32_t fuel_force_q2 =
         (int32_t)pfe_mul_q(obj->mass_fuel_q32, accel, 30U) + resist_q2;
-    uint64_t fuel_step = 0U;
+    uint64_t step_work = 0U;
+    uint32_t step_pull = 0U;
     if (fuel_force_q2 > 0) {
-        /* Work Fw' ds and Paux dt in mJ times nL/mJ, in two products:
-         * Fw' [N * 2^2] <= 2^27 times ds * fuel_q20 (< 2^14 * 2^22) is below
-         * 2^63; aux_fuel_q8 < 2^41 times dt <= 2^20 below 2^61. */
-        const int32_t f = (fuel_force_q2 < FUEL_FORCE_MAX_Q2) ? fuel_force_q2 : FUEL_FORCE_MAX_Q2;
-        const uint64_t work_coef_u = (uint64_t)ds * (uint32_t)obj->fuel_q20;
-        const int64_t work_coef = (int64_t)work_coef_u;
-        const int64_t work_nl = pfe_rshift_round((int64_t)f * work_coef, 22U);
-        /* aux_fuel_q8 >= 0: an unsigned 64 x 32 bit product. */
-        const int64_t aux_nl =
-            (int64_t)((((uint64_t)sim->aux_fuel_q8 * dt_q16) + ((uint64_t)1 << 23)) >> 24);
-        const int64_t step_nl = work_nl + aux_nl;
-        fuel_step = (uint64_t)step_nl;
-        if (with_sums) {
-            sums->aux_nl += (uint64_t)aux_nl;
-        }
+        /* The work Fw' ds, Fw' [N * 2^2] <= 2^27 times ds < 2^14: one
+         * 32 x 32 -> 64 bit multiply; the fuel is made from the sums
+         * (sim_fuel_nl()). */
+        const uint32_t f = (fuel_force_q2 < FUEL_FORCE_MAX_Q2) ? (uint32_t)fuel_force_q2
+                                                                : (uint32_t)FUEL_FORCE_MAX_Q2;
+        step_work = (uint64_t)f * ds;
+        step_pull = dt_q16;
     }
     if (with_sums && with_bound && (force > 0)) {
         /* Air, rolling and the bound's grade at the step's start speed, in
          * N * 2^2 as resistance_q2(), clamped to +-FUEL_FORCE_MAX_Q2; times
-         * ds * fuel as the work above: below 2^63. */
-        uint32_t k = (sim->position_mm + (ds / 2U)) / road->spacing_mm;
-        k = (k < road->n_samples) ? k : (road->n_samples - 1U);
-        int64_t f = pfe_rshift_round(sums->bound_air_q32 * v2, 30U) + sim->roll_q2 +
-                    pfe_rshift_round(sim->weight_q36 * ((int64_t)sums->bound_grade_20ppm[k] * 20), 34U);
+         * ds: below 2^41. */
+        int64_t f = air_q2(sums->bound_air_q32, v2u) + sim->roll_q2 +
+                    pfe_rshift_round(sim->weight_q36 * ((int64_t)sums->bound_grade_20ppm[sample] * 20),
+                                     34U);
         f = (f > FUEL_FORCE_MAX_Q2) ? FUEL_FORCE_MAX_Q2 : ((f < -FUEL_FORCE_MAX_Q2) ? -FUEL_FORCE_MAX_Q2 : f);
-        sums->bound_nl += pfe_rshift_round(f * ((int64_t)ds * sums->bound_fuel_q20), 22U);
+        sums->bound_work_q2_mm += (int64_t)(int32_t)f * (int64_t)ds;
     }
-    sim->fuel_nl = pfe_sat_add_u64(sim->fuel_nl, fuel_step);
-    sim->fuel_step_nl = fuel_step;
+    sim->work_q2_mm += step_work;
+    sim->pull_time_q16 += step_pull;
+    sim->step_work_q2_mm = step_work;
+    sim->step_pull_q16 = step_pull;
     sim->time_q16 += dt_q16;
     sim->position_mm += ds;
     sim->steps++;
@@ -224,6 +232,49 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
     sim->wheel_force_n = force;
     sim->accel_um_s2 = accel;
     return PFE_SIM_RUNNING;
+}
+
+/* The fuel of the sums (pfe_sim.h): the work Fw' ds [N * 2^2 * mm = mJ *
+ * 2^2] times fuel_q20 [nL/mJ * 2^20] over 2^22, and the time [s * 2^16]
+ * times aux_fuel_q8 [nL/s * 2^8] over 2^24, each rounded once: products
+ * below 2^81 and 2^79, exact (pfe_mul_shift_round_u64()). */
+static uint64_t work_fuel_nl(uint64_t work_q2_mm, int64_t fuel_q20)
+{
+    return pfe_mul_shift_round_u64(work_q2_mm, (uint64_t)fuel_q20, 22U);
+}
+
+static uint64_t aux_fuel_nl(const pfe_sim_t *sim, uint64_t pull_time_q16)
+{
+    return pfe_mul_shift_round_u64(pull_time_q16, (uint64_t)sim->aux_fuel_q8, 24U);
+}
+
+static uint64_t sim_fuel_nl(const pfe_sim_t *sim, uint64_t work_q2_mm, uint64_t pull_time_q16)
+{
+    return pfe_sat_add_u64(work_fuel_nl(work_q2_mm, sim->platoon->object.fuel_q20),
+                           aux_fuel_nl(sim, pull_time_q16));
+}
+
+/* The bound's fuel (pfe_sim_sums_t), rounded halves away from zero. */
+static int64_t bound_fuel_nl(int64_t work_q2_mm, int64_t fuel_q20)
+{
+    const uint64_t magnitude = (work_q2_mm < 0) ? (0U - (uint64_t)work_q2_mm) : (uint64_t)work_q2_mm;
+    const int64_t nl = (int64_t)work_fuel_nl(magnitude, fuel_q20); /* below 2^60 */
+    return (work_q2_mm < 0) ? -nl : nl;
+}
+
+/* The results of the sums after a run's steps: fuel_nl and what the last
+ * step added to it, and the sums' fuel. */
+static void finish_run(pfe_sim_t *sim, uint64_t pull_before_q16, pfe_sim_sums_t *sums)
+{
+    const uint64_t fuel = sim_fuel_nl(sim, sim->work_q2_mm, sim->pull_time_q16);
+    const uint64_t before = sim_fuel_nl(sim, sim->work_q2_mm - sim->step_work_q2_mm,
+                                        sim->pull_time_q16 - sim->step_pull_q16);
+    sim->fuel_step_nl = fuel - before;
+    sim->fuel_nl = fuel;
+    if (sums != NULL) {
+        sums->aux_nl += aux_fuel_nl(sim, sim->pull_time_q16) - aux_fuel_nl(sim, pull_before_q16);
+        sums->bound_nl = bound_fuel_nl(sums->bound_work_q2_mm, sums->bound_fuel_q20);
+    }
 }
 
 int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps, pfe_sim_sums_t *sums)
@@ -253,7 +304,9 @@ int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps, pfe_
         }
         *sums = t;
     }
+    const uint64_t pull_before = sim->pull_time_q16;
     *sim = s;
+    finish_run(sim, pull_before, sums);
     return r;
 }
 

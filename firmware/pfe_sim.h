@@ -15,6 +15,10 @@
  *   v      += a dt
  *   fuel   += delta (Fw' ds + Paux dt) / (eta rho_d), Fw' = (M + Mj) a +
  *             Fa + Fr + Fg (eq. 3.7, 4.14: work Fw' v dt = Fw' ds)
+ * The fuel is summed as work and time: each step adds its Fw' ds and its
+ * dt (where delta is 1) to two exact integer sums, and the fuel is made
+ * from them, rounded once, when pfe_sim_run() returns (not rounded a step
+ * at a time, which added up to half a nL a step).
  * A step in distance rather than time keeps the cost of a route to its
  * length / ds steps whatever the speed (1200 steps for 12 km at 10 m).
  *
@@ -78,12 +82,18 @@ typedef struct {
     uint32_t position_mm;
     uint32_t steps;
     uint64_t time_q16;       /* s * 2^16 */
-    uint64_t fuel_nl;        /* platoon total, eq. 4.14 */
+    uint64_t fuel_nl;        /* platoon total, eq. 4.14: the fuel of the two sums below,
+                              * each rounded to the nL */
+    uint64_t work_q2_mm;     /* sum of Fw' ds over the steps with Fw' > 0, N * 2^2 * mm
+                              * (each Fw' at most 2^27, so below 2^59 for any road) */
+    uint64_t pull_time_q16;  /* sum of dt over the same steps, s * 2^16 */
     /* What the last step used and produced. */
     int32_t grade_ppm;
     int32_t wheel_force_n;   /* controller output */
     int32_t accel_um_s2;
-    uint64_t fuel_step_nl;
+    uint64_t fuel_step_nl;   /* what it added to fuel_nl */
+    uint64_t step_work_q2_mm; /* its parts of the two sums (0 when Fw' <= 0) */
+    uint32_t step_pull_q16;
 } pfe_sim_t;
 
 /*
@@ -111,17 +121,23 @@ int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road);
 /*
  * Sums over a run besides its fuel (pfe_sim_run()), for the prediction's
  * bounds (pfe_predict.h):
- *   aux_nl    the auxiliaries' part of fuel_nl;
- *   bound_nl  when bound_grade_20ppm is not NULL, the work of a fuel bound
- *             over the steps where the controller pulls (Fw > 0):
- *             (bound_air v^2 + Fr + M g bound_grade[k]) ds * bound_fuel, v
- *             the step's starting speed, k the sample of its midpoint;
- *             negative downhill.
+ *   aux_nl    the auxiliaries' part of fuel_nl (the steps' time summed, its
+ *             fuel rounded once: pfe_sim_t.pull_time_q16);
+ *   bound_work_q2_mm  when bound_grade_20ppm is not NULL, the work of a
+ *             fuel bound over the steps where the controller pulls (Fw > 0):
+ *             (bound_air v^2 + Fr + M g bound_grade[k]) ds, each force
+ *             clamped to +-2^27 N * 2^2, v the step's starting speed, k the
+ *             sample of its midpoint; negative downhill; below 2^59 in
+ *             magnitude for any road;
+ *   bound_nl  that work's fuel at bound_fuel, rounded to the nearest nL
+ *             (halves away from zero), made when pfe_sim_run() returns.
  */
 typedef struct {
     const int16_t *bound_grade_20ppm; /* one per road sample, in 20 ppm (+-25000); NULL: no bound */
-    int64_t bound_air_q32;            /* as pfe_vehicle_t.air_q32 */
+    int64_t bound_air_q32;            /* as pfe_vehicle_t.air_q32, at most
+                                       * PFE_FORMATION_AIR_MAX_Q32 (a platoon's) */
     int64_t bound_fuel_q20;           /* as pfe_vehicle_t.fuel_q20 */
+    int64_t bound_work_q2_mm;
     int64_t bound_nl;
     uint64_t aux_nl;
 } pfe_sim_sums_t;
