@@ -121,3 +121,17 @@ uint64_t pfe_mul_shift_round_u64(uint64_t a, uint64_t b, uint32_t shift)
     }
     return q;
 }
+
+int32_t pfe_mantissa_i32(int64_t x, uint32_t min_shift, uint32_t *shift)
+{
+    const uint64_t mag = (x < 0) ? (0U - (uint64_t)x) : (uint64_t)x;
+    uint32_t s = min_shift;
+    uint64_t m = (s == 0U) ? mag : ((mag + ((uint64_t)1 << (s - 1U))) >> s);
+    while (m >= ((uint64_t)1 << 31)) {
+        s++;
+        m = (mag + ((uint64_t)1 << (s - 1U))) >> s;
+    }
+    *shift = s;
+    const int32_t m32 = (int32_t)m;
+    return (x < 0) ? -m32 : m32;
+}

@@ -64,6 +64,15 @@ static inline int64_t pfe_mul_q(int64_t a, int32_t b, uint32_t shift)
 }
 
 /*
+ * x as m * 2^shift with |m| < 2^31, for a coefficient to be multiplied 32 x
+ * 32 -> 64 bits in a step: the smallest shift >= min_shift, m = x / 2^shift
+ * rounded to nearest (|x| halves up, the sign kept), so m = x exactly when
+ * the shift is 0 or x's low shift bits are 0. |x| < 2^62, min_shift <= 31.
+ * Configuration time only (a loop over the shifts).
+ */
+int32_t pfe_mantissa_i32(int64_t x, uint32_t min_shift, uint32_t *shift);
+
+/*
  * a * b / 2^shift rounded to nearest (halves up), 1 <= shift <= 63, from the
  * exact 128-bit product (four 32 x 32 -> 64 bit multiplies); saturates at
  * UINT64_MAX. For sums turned into results once per call, not per step.

@@ -29,17 +29,26 @@ static inline int64_t air_q2(int64_t air_q32, uint64_t v2)
     return (int64_t)(product >> 30);
 }
 
+/* Fg = M g grade in N * 2^2 (eq. 4.10, small angle): |grade| <= 5 * 10^5
+ * (checked at init) times weight_scale <= 2^10 is below 2^29, times
+ * |weight_m| < 2^31 below 2^60: one 32 x 32 -> 64 bit multiply, its rounded
+ * high word. */
+static inline int64_t grade_q2(const pfe_sim_t *sim, int32_t grade_ppm)
+{
+    const int32_t g = grade_ppm * sim->weight_scale;
+    return pfe_rshift_round((int64_t)sim->weight_m * g, 32U);
+}
+
 /* Fa + Fr + Fg of the object model at speed v and grade (eq. 4.6 to 4.10),
  * N * 2^2 (finer than whole newtons, whose rounding bias would add up over a
  * route): the sum of pfe_vehicle_resistance_n() with the small-angle grade of
  * pfe_platoon_grade_accel(), its constant and linear parts folded at init.
- * air_q32 < 2^22 and v < 2^17: below 2^56; weight_q36 < 2^42 (3200 t) and
- * |grade| <= 2^19 (checked at init): below 2^61. The sum, at most about
- * 3.4e7 N, fits 32 bits in N * 2^2. */
+ * air_q32 < 2^22 and v < 2^17: below 2^56. The sum, at most about 3.4e7 N,
+ * fits 32 bits in N * 2^2. */
 static int32_t resistance_q2(const pfe_sim_t *sim, uint64_t v2, int32_t grade_ppm)
 {
     return (int32_t)(air_q2(sim->platoon->object.air_q32, v2) + sim->roll_q2 +
-                     pfe_rshift_round(sim->weight_q36 * (int64_t)grade_ppm, 34U));
+                     grade_q2(sim, grade_ppm));
 }
 
 /* Per-kg gain [1/s * 1000] to N per um/s * 2^32: M * k * 2^32 / 10^9. */
@@ -113,8 +122,6 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     sim->fuel_nl = 0U;
     sim->work_q2_mm = 0U;
     sim->pull_time_q16 = 0U;
-    sim->step_work_q2_mm = 0U;
-    sim->step_pull_q16 = 0U;
     sim->grade_ppm = road->grade_ppm[0];
     sim->accel_um_s2 = 0;
     sim->fuel_step_nl = 0U;
@@ -123,9 +130,17 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     /* cr M g: roll_q32 < 2^31 times g < 2^24, over 2^30. */
     sim->roll_q2 = pfe_rshift_round(obj->roll_q32 * (int64_t)platoon->gravity_um_s2, 30U);
     /* M g [N] * 2^36 / 10^6 = mass_q32 [kg * 2^32 / 10^6] * g [um/s^2] * 2^4
-     * / 10^6; mass_q32 * g < 2^57, times 2^4 below 2^61. */
-    sim->weight_q36 = (int64_t)pfe_udiv_round_u64(
+     * / 10^6; mass_q32 * g < 2^57, times 2^4 below 2^61; the quotient below
+     * 2^42 (3200 t), so its shift is 2 .. 12. */
+    const int64_t weight_q36 = (int64_t)pfe_udiv_round_u64(
         ((uint64_t)obj->mass_q32 * platoon->gravity_um_s2) << 4, 1000000U);
+    uint32_t shift = 0U;
+    sim->weight_m = pfe_mantissa_i32(weight_q36, 2U, &shift);
+    sim->weight_scale = (int32_t)1 << (shift - 2U);
+    /* mass_fuel_q32 < 2^35 (M + Mj <= 2 M <= 6.4e6 kg: below 2^34.7): shift
+     * 0 .. 4, the scale 2^2 .. 2^6, so |a| 2^6 <= 2^30.3. */
+    sim->mass_fuel_m = pfe_mantissa_i32(obj->mass_fuel_q32, 0U, &shift);
+    sim->mass_fuel_scale = (int32_t)4 << shift;
     /* Paux [mW] * fuel_q20 [nL/mJ * 2^20] / 2^12 = nL/s * 2^8; Paux <= 3.2e9 mW
      * and fuel_q20 < 2^22 keep it below 2^41. */
     sim->aux_fuel_q8 = pfe_rshift_round((int64_t)obj->power_aux_w * 1000 * obj->fuel_q20, 12U);
@@ -193,13 +208,16 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
     const int32_t accel = pfe_platoon_accel_um_s2(pl, (force * 4) - resist_q2);
     /* |a| <= 2^24.3, dt <= 2^20: dv below 2^28.3, and the sum with a speed
      * <= 7e7 um/s stays inside int32. */
-    const int32_t dv = (int32_t)pfe_mul_q((int64_t)accel, (int32_t)dt_q16, 16U);
+    const int32_t dt_i = (int32_t)dt_q16;
+    const int32_t dv = (int32_t)pfe_rshift_round((int64_t)accel * dt_i, 16U);
     sim->speed_um_s = pfe_clamp_i32(sim->speed_um_s + dv, 0, PFE_SPEED_MAX_MM_S * 1000);
 
-    /* eq. 3.7 / 4.14 in N * 2^2: (M + Mj) a is within M * 20 m/s^2 * 1.03
-     * (mass_fuel_q32 < 2^35, |a| <= 2^24.3), the sum below 2^30. */
+    /* eq. 3.7 / 4.14 in N * 2^2: (M + Mj) a is within M * 20 m/s^2 * 2
+     * (|a| * mass_fuel_scale <= 2^30.3 times |mass_fuel_m| < 2^31: one
+     * 32 x 32 -> 64 bit multiply), the sum below 2^30. */
+    const int32_t a_scaled = accel * sim->mass_fuel_scale;
     const int32_t fuel_force_q2 =
-        (int32_t)pfe_mul_q(obj->mass_fuel_q32, accel, 30U) + resist_q2;
+        (int32_t)pfe_rshift_round((int64_t)sim->mass_fuel_m * a_scaled, 32U) + resist_q2;
     uint64_t step_work = 0U;
     uint32_t step_pull = 0U;
     if (fuel_force_q2 > 0) {
@@ -216,15 +234,12 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
          * N * 2^2 as resistance_q2(), clamped to +-FUEL_FORCE_MAX_Q2; times
          * ds: below 2^41. */
         int64_t f = air_q2(sums->bound_air_q32, v2u) + sim->roll_q2 +
-                    pfe_rshift_round(sim->weight_q36 * ((int64_t)sums->bound_grade_20ppm[sample] * 20),
-                                     34U);
+                    grade_q2(sim, (int32_t)sums->bound_grade_20ppm[sample] * 20);
         f = (f > FUEL_FORCE_MAX_Q2) ? FUEL_FORCE_MAX_Q2 : ((f < -FUEL_FORCE_MAX_Q2) ? -FUEL_FORCE_MAX_Q2 : f);
         sums->bound_work_q2_mm += (int64_t)(int32_t)f * (int64_t)ds;
     }
     sim->work_q2_mm += step_work;
     sim->pull_time_q16 += step_pull;
-    sim->step_work_q2_mm = step_work;
-    sim->step_pull_q16 = step_pull;
     sim->time_q16 += dt_q16;
     sim->position_mm += ds;
     sim->steps++;
@@ -262,14 +277,12 @@ static int64_t bound_fuel_nl(int64_t work_q2_mm, int64_t fuel_q20)
     return (work_q2_mm < 0) ? -nl : nl;
 }
 
-/* The results of the sums after a run's steps: fuel_nl and what the last
- * step added to it, and the sums' fuel. */
+/* The results of the sums after a call's steps: fuel_nl and what they added
+ * to it, and the sums' fuel. */
 static void finish_run(pfe_sim_t *sim, uint64_t pull_before_q16, pfe_sim_sums_t *sums)
 {
     const uint64_t fuel = sim_fuel_nl(sim, sim->work_q2_mm, sim->pull_time_q16);
-    const uint64_t before = sim_fuel_nl(sim, sim->work_q2_mm - sim->step_work_q2_mm,
-                                        sim->pull_time_q16 - sim->step_pull_q16);
-    sim->fuel_step_nl = fuel - before;
+    sim->fuel_step_nl = fuel - sim->fuel_nl;
     sim->fuel_nl = fuel;
     if (sums != NULL) {
         sums->aux_nl += aux_fuel_nl(sim, sim->pull_time_q16) - aux_fuel_nl(sim, pull_before_q16);

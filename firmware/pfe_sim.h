@@ -72,7 +72,14 @@ typedef struct {
     /* Object-model resistance split for the step (eq. 4.8, 4.10): the
      * rolling part is constant, the grade part linear in the grade. */
     int64_t roll_q2;         /* cr M g, N * 2^2 */
-    int64_t weight_q36;      /* M g in N, * 2^36 / 10^6: Fg = weight * grade_ppm / 2^36 */
+    int32_t weight_m;        /* M g in N * 2^36 / 10^6 (below 2^42) = weight_m * 2^s, s >= 2
+                              * (pfe_mantissa_i32()): Fg [N * 2^2] = weight_m *
+                              * (grade_ppm * weight_scale) / 2^32 */
+    int32_t weight_scale;    /* 2^(s - 2), at most 2^10 */
+    int32_t mass_fuel_m;     /* (M + Mj) as pfe_vehicle_t.mass_fuel_q32 (< 2^35) = mass_fuel_m
+                              * * 2^s: (M + Mj) a [N * 2^2] = mass_fuel_m * (a *
+                              * mass_fuel_scale) / 2^32 */
+    int32_t mass_fuel_scale; /* 2^(s + 2), at most 2^6 */
     int64_t aux_fuel_q8;     /* fuel for sum Paux, nL/s * 2^8 (eq. 4.14) */
     uint32_t ctrl_tau_ms;    /* the controller's time constant, min(1 / kp, 1 / sqrt(ki)) */
     uint32_t stiff_below_mm_s; /* below this speed a step may be shortened (see the top) */
@@ -91,9 +98,8 @@ typedef struct {
     int32_t grade_ppm;
     int32_t wheel_force_n;   /* controller output */
     int32_t accel_um_s2;
-    uint64_t fuel_step_nl;   /* what it added to fuel_nl */
-    uint64_t step_work_q2_mm; /* its parts of the two sums (0 when Fw' <= 0) */
-    uint32_t step_pull_q16;
+    uint64_t fuel_step_nl;   /* what the last call's steps added to fuel_nl: pfe_sim_step()'s,
+                              * its step's */
 } pfe_sim_t;
 
 /*
