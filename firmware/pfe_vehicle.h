@@ -63,8 +63,8 @@ int pfe_vehicle_init(pfe_vehicle_t *veh, const pfe_vehicle_calib_t *calib,
 
 /*
  * g sin(alpha) and g cos(alpha) for grade = tan(alpha), exactly (not the
- * small-angle forms): cos = 1 / sqrt(1 + grade^2) by a second-order series
- * and two Newton steps in Q30, error below 2e-9 over the grade range.
+ * small-angle forms): cos = 1 / sqrt(1 + grade^2) from a 17-entry table's
+ * chord and one Newton step in Q30, error below 2e-9 over the grade range.
  * grade_ppm is clamped to +-PFE_GRADE_MAX_PPM.
  */
 void pfe_grade_accel(int32_t grade_ppm, uint32_t gravity_um_s2, pfe_grade_accel_t *out);
