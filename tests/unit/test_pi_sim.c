@@ -79,6 +79,25 @@ static void test_pi_saturates_without_windup(void **state)
     assert_int_equal(pfe_pi_step(&pi, 0, ONE_S_Q16, 30, 10), 10);
 }
 
+static void test_pi_integral_rate_limit(void **state)
+{
+    (void)state;
+    pfe_pi_t pi;
+    /* The largest gain, 2^35 (8 U per E per s): the rate's error is held
+     * at 2^54 / 2^35 = 2^19, so one second of an error of 2^25 adds
+     * 2^35 * 2^19 / 2^32 = 2^22 to I (not 2^25, the step's own limit of
+     * 2^29 / 16). */
+    pfe_pi_init(&pi, 0, PFE_PI_GAIN_MAX_Q32, 0);
+    assert_int_equal(pfe_pi_step(&pi, PFE_PI_ERROR_MAX, ONE_S_Q16, -PFE_PI_OUT_MAX, PFE_PI_OUT_MAX),
+                     4194304);
+    /* Below the limit the rate is the gain's: 2^35 * 2^18 / 2^32 = 2^21 more. */
+    assert_int_equal(pfe_pi_step(&pi, (int32_t)1 << 18, ONE_S_Q16, -PFE_PI_OUT_MAX, PFE_PI_OUT_MAX),
+                     4194304 + 2097152);
+    /* A gain above 2^31, 2^32 + 2^30 (1.25): its mantissa keeps it exactly. */
+    pfe_pi_init(&pi, ONE_Q32 + (ONE_Q32 / 4), 0, 0);
+    assert_int_equal(pfe_pi_step(&pi, 1000, ONE_S_Q16, -100000, 100000), 1250);
+}
+
 static void test_pi_in_range_is_the_checked_step(void **state)
 {
     (void)state;
@@ -277,6 +296,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pi_proportional_and_integral),
         cmocka_unit_test(test_pi_saturates_without_windup),
+        cmocka_unit_test(test_pi_integral_rate_limit),
         cmocka_unit_test(test_pi_in_range_is_the_checked_step),
         cmocka_unit_test(test_flat_road_needs_129_kw),
         cmocka_unit_test(test_two_percent_upgrade_settles_at_73_7_kmh),
