@@ -9,7 +9,8 @@ static int32_t gain_mantissa(int64_t gain_q32, int32_t *scale)
 {
     uint32_t shift = 0U;
     const int32_t m = pfe_mantissa_i32(gain_q32, 0U, &shift);
-    *scale = (int32_t)1 << shift;
+    const uint32_t sc = 1U << shift;
+    *scale = (int32_t)sc;
     return m;
 }
 

@@ -153,7 +153,8 @@ int pfe_platoon_init_finish(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
     uint32_t inv_shift = 0U;
     pl->inv_mass_m = pfe_mantissa_i32((int64_t)pfe_udiv_round_u64(1000000ULL << 30, mass), 0U,
                                       &inv_shift);
-    pl->inv_mass_scale = (int32_t)1 << inv_shift;
+    const uint32_t inv_scale = 1U << inv_shift;
+    pl->inv_mass_scale = (int32_t)inv_scale;
     /* M [kg] * 20 m/s^2 * 4 <= 3.2e6 * 80 < 2^28 */
     pl->force_limit_q2 = (int32_t)mass * (PFE_ACCEL_MAX_UM_S2 / 1000000) * 4;
     obj->mass_q32 = (int64_t)pfe_udiv_round_u64(mass << 26, POW5_6);

@@ -136,11 +136,14 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
         ((uint64_t)obj->mass_q32 * platoon->gravity_um_s2) << 4, 1000000U);
     uint32_t shift = 0U;
     sim->weight_m = pfe_mantissa_i32(weight_q36, 2U, &shift);
-    sim->weight_scale = (int32_t)1 << (shift - 2U);
+    const uint32_t weight_shift = shift - 2U;
+    const uint32_t weight_scale = 1U << weight_shift;
+    sim->weight_scale = (int32_t)weight_scale;
     /* mass_fuel_q32 < 2^35 (M + Mj <= 2 M <= 6.4e6 kg: below 2^34.7): shift
      * 0 .. 4, the scale 2^2 .. 2^6, so |a| 2^6 <= 2^30.3. */
     sim->mass_fuel_m = pfe_mantissa_i32(obj->mass_fuel_q32, 0U, &shift);
-    sim->mass_fuel_scale = (int32_t)4 << shift;
+    const uint32_t mass_fuel_scale = 4U << shift;
+    sim->mass_fuel_scale = (int32_t)mass_fuel_scale;
     /* Paux [mW] * fuel_q20 [nL/mJ * 2^20] / 2^12 = nL/s * 2^8; Paux <= 3.2e9 mW
      * and fuel_q20 < 2^22 keep it below 2^41. */
     sim->aux_fuel_q8 = pfe_rshift_round((int64_t)obj->power_aux_w * 1000 * obj->fuel_q20, 12U);

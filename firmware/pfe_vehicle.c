@@ -53,18 +53,17 @@ static inline int32_t mul_q_i32(int32_t a, int32_t b, uint32_t shift)
     return (int32_t)(uint32_t)(sum >> shift);
 }
 
-/* 1 / sqrt(1 + k / 64) in Q30, k = 0 .. 16: round(2^30 / sqrt(1 + k / 64)),
- * the first guess of pfe_grade_accel() by linear interpolation over x =
- * grade^2 in 0 .. 0.25 (segments of 1/64: the chord of this convex function
- * lies above it by h^2 f'' / 8 <= (1/64)^2 * 0.75 / 8 = 2.3e-5 at most). */
-static const int32_t k_inv_sqrt_q30[17] = {
-    1073741824, 1065450257, 1057347856, 1049427536, 1041682578, 1034106604,
-    1026693558, 1019437682, 1012333500, 1005375799, 998559613,  991880210,
-    985333074,  978913898,  972618566,  966443148,  960383883,
-};
-
 void pfe_grade_accel(int32_t grade_ppm, uint32_t gravity_um_s2, pfe_grade_accel_t *out)
 {
+    /* 1 / sqrt(1 + k / 64) in Q30, k = 0 .. 16: round(2^30 / sqrt(1 + k / 64)),
+     * the first guess below, by linear interpolation over x =
+     * grade^2 in 0 .. 0.25 (segments of 1/64: the chord of this convex function
+     * lies above it by h^2 f'' / 8 <= (1/64)^2 * 0.75 / 8 = 2.3e-5 at most). */
+    static const int32_t k_inv_sqrt_q30[17] = {
+        1073741824, 1065450257, 1057347856, 1049427536, 1041682578, 1034106604,
+        1026693558, 1019437682, 1012333500, 1005375799, 998559613,  991880210,
+        985333074,  978913898,  972618566,  966443148,  960383883,
+    };
     /* Every operand and result below fits 32 bits (the bounds beside each),
      * so each product is one 32 x 32 -> 64 bit multiply. */
     const int32_t one_q30 = (int32_t)1 << 30;
