@@ -118,6 +118,10 @@ static void test_fuel_rate_and_fuel_cut(void **state)
     assert_int_equal(pfe_fuel_rate_nl_s(-30000, 25000, 4000U, v.fuel_q20), 0);
     /* Saturates instead of wrapping. */
     assert_int_equal(pfe_fuel_rate_nl_s(INT32_MAX, 70000, 100000U, v.fuel_q20), UINT32_MAX);
+    /* A speed below 0 counts as 0: 100 kW alone at 73224 / 2^20 nL/mJ,
+     * 10^8 mW * 73224 / 2^20 = 6983184.8 nL/s. */
+    assert_int_equal(pfe_fuel_rate_nl_s(1000, -5, 100000U, 73224), 6983185);
+    assert_int_equal(pfe_fuel_rate_nl_s(1000, 0, 100000U, 73224), 6983185);
 }
 
 static void test_fuel_force_includes_rotating_mass(void **state)
