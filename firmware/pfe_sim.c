@@ -233,13 +233,12 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
         step_pull = dt_q16;
     }
     if (with_sums && with_bound && (force > 0)) {
-        /* Air, rolling and the bound's grade at the step's start speed, in
-         * N * 2^2 as resistance_q2(), clamped to +-FUEL_FORCE_MAX_Q2; times
-         * ds: below 2^41. */
-        int64_t f = air_q2(sums->bound_air_q32, v2u) + sim->roll_q2 +
-                    grade_q2(sim, (int32_t)sums->bound_grade_20ppm[sample] * 20);
-        f = (f > FUEL_FORCE_MAX_Q2) ? FUEL_FORCE_MAX_Q2 : ((f < -FUEL_FORCE_MAX_Q2) ? -FUEL_FORCE_MAX_Q2 : f);
-        sums->bound_work_q2_mm += (int64_t)(int32_t)f * (int64_t)ds;
+        /* The bound's three sums (pfe_sim.h): v^2 / 2 < 2^32 times ds, the
+         * bound's grade (|g| <= 25000) times ds: two multiply-accumulates. */
+        const uint32_t v2_half = (uint32_t)(v2u >> 1);
+        sums->bound_v2_ds += (uint64_t)v2_half * ds;
+        sums->bound_ds_mm += ds;
+        sums->bound_grade_ds += (int64_t)sums->bound_grade_20ppm[sample] * (int32_t)ds;
     }
     sim->work_q2_mm += step_work;
     sim->pull_time_q16 += step_pull;
@@ -272,12 +271,25 @@ static uint64_t sim_fuel_nl(const pfe_sim_t *sim, uint64_t work_q2_mm, uint64_t 
                            aux_fuel_nl(sim, pull_time_q16));
 }
 
-/* The bound's fuel (pfe_sim_sums_t), rounded halves away from zero. */
-static int64_t bound_fuel_nl(int64_t work_q2_mm, int64_t fuel_q20)
+/* The bound's fuel (pfe_sim_sums_t): its work in N * 2^2 * mm, the air
+ * part bound_air [N per (mm/s)^2 * 2^32] * 2 sum v^2 ds / 2 / 2^30 (below
+ * 2^22 * 2^63 / 2^29), the rolling part roll_q2 (< 2^25) * sum ds (< 2^32),
+ * the grade part M g [as weight_m * 2^(2 + s) per ppm] * 20 * sum g20 ds
+ * / 2^32 (below 2^45.4 * 2^47 / 2^32); each below 2^60, rounded once, and
+ * the work's fuel rounded halves away from zero. */
+static int64_t bound_fuel_nl(const pfe_sim_t *sim, const pfe_sim_sums_t *sums)
 {
-    const uint64_t magnitude = (work_q2_mm < 0) ? (0U - (uint64_t)work_q2_mm) : (uint64_t)work_q2_mm;
-    const int64_t nl = (int64_t)work_fuel_nl(magnitude, fuel_q20); /* below 2^60 */
-    return (work_q2_mm < 0) ? -nl : nl;
+    const int64_t air = (int64_t)pfe_mul_shift_round_u64((uint64_t)sums->bound_air_q32,
+                                                         sums->bound_v2_ds, 29U);
+    const int64_t roll = sim->roll_q2 * (int64_t)sums->bound_ds_mm;
+    const uint64_t weight_20 = (uint64_t)(int64_t)sim->weight_m * 20U * (uint64_t)sim->weight_scale;
+    const int64_t g_ds = sums->bound_grade_ds;
+    const uint64_t g_mag = (g_ds < 0) ? (0U - (uint64_t)g_ds) : (uint64_t)g_ds;
+    const int64_t grade_mag = (int64_t)pfe_mul_shift_round_u64(weight_20, g_mag, 32U);
+    const int64_t work = air + roll + ((g_ds < 0) ? -grade_mag : grade_mag);
+    const uint64_t magnitude = (work < 0) ? (0U - (uint64_t)work) : (uint64_t)work;
+    const int64_t nl = (int64_t)work_fuel_nl(magnitude, sums->bound_fuel_q20); /* below 2^60 */
+    return (work < 0) ? -nl : nl;
 }
 
 /* The results of the sums after a call's steps: fuel_nl and what they added
@@ -289,7 +301,7 @@ static void finish_run(pfe_sim_t *sim, uint64_t pull_before_q16, pfe_sim_sums_t 
     sim->fuel_nl = fuel;
     if (sums != NULL) {
         sums->aux_nl += aux_fuel_nl(sim, sim->pull_time_q16) - aux_fuel_nl(sim, pull_before_q16);
-        sums->bound_nl = bound_fuel_nl(sums->bound_work_q2_mm, sums->bound_fuel_q20);
+        sums->bound_nl = bound_fuel_nl(sim, sums);
     }
 }
 

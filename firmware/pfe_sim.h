@@ -129,21 +129,25 @@ int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road);
  * bounds (pfe_predict.h):
  *   aux_nl    the auxiliaries' part of fuel_nl (the steps' time summed, its
  *             fuel rounded once: pfe_sim_t.pull_time_q16);
- *   bound_work_q2_mm  when bound_grade_20ppm is not NULL, the work of a
- *             fuel bound over the steps where the controller pulls (Fw > 0):
- *             (bound_air v^2 + Fr + M g bound_grade[k]) ds, each force
- *             clamped to +-2^27 N * 2^2, v the step's starting speed, k the
- *             sample of its midpoint; negative downhill; below 2^59 in
- *             magnitude for any road;
- *   bound_nl  that work's fuel at bound_fuel, rounded to the nearest nL
- *             (halves away from zero), made when pfe_sim_run() returns.
+ *   bound_*   when bound_grade_20ppm is not NULL, the work of a fuel bound
+ *             over the steps where the controller pulls (Fw > 0),
+ *             sum (bound_air v^2 + Fr + M g bound_grade[k]) ds, v the step's
+ *             starting speed, k the sample of its midpoint, negative
+ *             downhill: linear in v^2, 1 and the grade, it is summed as
+ *             three sums, sum v^2 ds / 2 (v^2 / 2 rounded down), sum ds and
+ *             sum bound_grade ds, each exact;
+ *   bound_nl  that work's fuel at bound_fuel, made from the three sums
+ *             when pfe_sim_run() returns and rounded once to the nearest nL
+ *             (halves away from zero).
  */
 typedef struct {
     const int16_t *bound_grade_20ppm; /* one per road sample, in 20 ppm (+-25000); NULL: no bound */
     int64_t bound_air_q32;            /* as pfe_vehicle_t.air_q32, at most
                                        * PFE_FORMATION_AIR_MAX_Q32 (a platoon's) */
     int64_t bound_fuel_q20;           /* as pfe_vehicle_t.fuel_q20 */
-    int64_t bound_work_q2_mm;
+    uint64_t bound_v2_ds;             /* sum v^2 / 2 ds, (mm/s)^2 * mm: below 2^63 for any road */
+    uint64_t bound_ds_mm;             /* sum ds, mm */
+    int64_t bound_grade_ds;           /* sum bound_grade ds, 20 ppm * mm: below 2^47 */
     int64_t bound_nl;
     uint64_t aux_nl;
 } pfe_sim_sums_t;
