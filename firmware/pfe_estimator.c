@@ -66,11 +66,15 @@ static uint32_t track_speed(pfe_estimator_t *est, const pfe_est_input_t *in)
     return flags;
 }
 
+/* total + rate saturated at UINT64_MAX, PFE_EST_SATURATED raised when the
+ * sum reaches it: one comparison decides both (total + rate >= UINT64_MAX). */
 static uint64_t accumulate(uint64_t total, uint32_t rate, uint32_t *flags)
 {
-    const uint64_t sum = pfe_sat_add_u64(total, rate);
-    if (sum == UINT64_MAX) {
+    uint64_t sum = UINT64_MAX;
+    if (total >= (UINT64_MAX - rate)) {
         *flags |= PFE_EST_SATURATED;
+    } else {
+        sum = total + rate;
     }
     return sum;
 }
