@@ -17,6 +17,7 @@ int pfe_estimator_init(pfe_estimator_t *est, const pfe_platoon_t *platoon)
     est->ticks_since_sample = 0U;
     est->trig_grade_ppm = 0;
     pfe_grade_accel(0, platoon->gravity_um_s2, &est->trig);
+    est->object_along_um_s2 = 0;
     est->fuel_used_10pl = 0U;
     for (uint32_t i = 0U; i < PFE_MAX_VEHICLES; i++) {
         est->pos_fuel_used_10pl[i] = 0U;
@@ -119,15 +120,16 @@ const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_i
     const int32_t grade = est->out.grade_ppm;
     if (grade != est->trig_grade_ppm) { /* SSI repeats its value often: reuse */
         pfe_grade_accel(grade, pl->gravity_um_s2, &est->trig);
+        pfe_grade_accel_t small;
+        pfe_platoon_grade_accel(pl, grade, &small);
+        est->object_along_um_s2 = small.along_um_s2;
         est->trig_grade_ppm = grade;
     }
 
     /* v <= PFE_SPEED_MAX_MM_S and a within +-PFE_ACCEL_MAX_UM_S2, as the
      * filter keeps them: what the inline forces below require. */
     const uint64_t v2 = (uint64_t)(uint32_t)v * (uint32_t)v;
-    pfe_grade_accel_t small;
-    pfe_platoon_grade_accel(pl, grade, &small);
-    const int32_t force = pfe_platoon_fuel_force_n(pl, v2, a, small.along_um_s2);
+    const int32_t force = pfe_platoon_fuel_force_n(pl, v2, a, est->object_along_um_s2);
     est->out.wheel_force_n = force;
     est->out.fuel_rate_nl_s = pfe_fuel_rate_nl_s(force, v, pl->object.power_aux_w, pl->object.fuel_q20);
     est->fuel_used_10pl = accumulate(est->fuel_used_10pl, est->out.fuel_rate_nl_s, &flags);

@@ -150,8 +150,11 @@ static inline int32_t pfe_platoon_fuel_force_n(const pfe_platoon_t *pl, uint64_t
                                                int32_t accel_um_s2, int32_t along_um_s2)
 {
     const pfe_vehicle_t *obj = &pl->object;
+    /* the object's air_q32, a sum of 32 positions' below 2^17, is below
+     * 2^22: an unsigned 32 x 64 bit product with v2 < 2^33 */
+    const uint64_t air = (uint64_t)(uint32_t)obj->air_q32 * v2;
     const int64_t sum = (obj->mass_fuel_q32 * accel_um_s2) + pl->roll_force_q32 +
-                        (obj->mass_q32 * along_um_s2) + (obj->air_q32 * (int64_t)v2);
+                        (obj->mass_q32 * along_um_s2) + (int64_t)air;
     return (int32_t)pfe_rshift_round(sum, 32U);
 }
 
