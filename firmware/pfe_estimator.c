@@ -80,7 +80,7 @@ static uint64_t accumulate(uint64_t total, uint32_t rate, uint32_t *flags)
     return sum;
 }
 
-const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_input_t *in)
+PFE_FLATTEN const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_input_t *in)
 {
     uint32_t flags = 0U;
     if ((in == NULL) || !in->speed_valid) {
