@@ -154,7 +154,8 @@ typedef struct {
 
 /*
  * Up to max_steps steps (the same as calling pfe_sim_step() that often, at
- * less cost per step), adding to *sums unless it is NULL: stops early at the
+ * less cost per step, but for fuel_step_nl: what this call's steps added),
+ * adding to *sums unless it is NULL: stops early at the
  * end of the road or on a stall; max_steps UINT32_MAX runs to the end.
  * Returns PFE_SIM_RUNNING (max_steps taken, more to go), PFE_SIM_DONE or
  * PFE_ESTALL.
