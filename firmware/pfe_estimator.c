@@ -68,14 +68,15 @@ static uint32_t track_speed(pfe_estimator_t *est, const pfe_est_input_t *in)
 }
 
 /* total + rate saturated at UINT64_MAX, PFE_EST_SATURATED raised when the
- * sum reaches it: one comparison decides both (total + rate >= UINT64_MAX). */
+ * sum reaches it (total + rate >= UINT64_MAX). Below 2^64 - 2^32 a total
+ * plus a rate (< 2^32) stays below UINT64_MAX: the high word alone rules
+ * that out on every step but the last few before saturation. */
 static uint64_t accumulate(uint64_t total, uint32_t rate, uint32_t *flags)
 {
-    uint64_t sum = UINT64_MAX;
-    if (total >= (UINT64_MAX - rate)) {
+    uint64_t sum = total + rate;
+    if (((total >> 32) == 0xFFFFFFFFU) && (total >= (UINT64_MAX - rate))) {
         *flags |= PFE_EST_SATURATED;
-    } else {
-        sum = total + rate;
+        sum = UINT64_MAX;
     }
     return sum;
 }
@@ -96,7 +97,11 @@ PFE_FLATTEN const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, con
         flags |= track_speed(est, in);
     }
     if ((flags & PFE_EST_SPEED_MISSING) == 0U) {
-        est->out.speed_mm_s = (est->filter.speed_um_s + 500) / 1000;
+        /* the filter keeps its speed within 0 .. PFE_SPEED_MAX_MM_S * 1000:
+         * an unsigned division */
+        const uint32_t speed_um_s = (uint32_t)est->filter.speed_um_s;
+        const uint32_t speed_mm_s = (speed_um_s + 500U) / 1000U;
+        est->out.speed_mm_s = (int32_t)speed_mm_s;
         est->out.accel_um_s2 = est->filter.accel_um_s2;
         if (est->filter.samples < PFE_EST_WARMUP_SAMPLES) {
             flags |= PFE_EST_WARMING_UP;
@@ -131,8 +136,9 @@ PFE_FLATTEN const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, con
     const uint64_t v2 = (uint64_t)(uint32_t)v * (uint32_t)v;
     const int32_t force = pfe_platoon_fuel_force_n(pl, v2, a, est->object_along_um_s2);
     est->out.wheel_force_n = force;
-    est->out.fuel_rate_nl_s = pfe_fuel_rate_nl_s(force, v, pl->object.power_aux_w, pl->object.fuel_q20);
-    est->fuel_used_10pl = accumulate(est->fuel_used_10pl, est->out.fuel_rate_nl_s, &flags);
+    const uint32_t object_rate = pfe_fuel_rate_nl_s(force, v, pl->object.power_aux_w, pl->object.fuel_q20);
+    est->out.fuel_rate_nl_s = object_rate;
+    est->fuel_used_10pl = accumulate(est->fuel_used_10pl, object_rate, &flags);
 
     /* Each position: what differs is its coefficients; v^2, a and the
      * grade split are shared, and a position with the coefficients of the
@@ -155,7 +161,7 @@ PFE_FLATTEN const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, con
         est->out.pos_fuel_rate_nl_s[i] = rate;
         est->pos_fuel_used_10pl[i] = accumulate(est->pos_fuel_used_10pl[i], rate, &flags);
     }
-    if (est->out.fuel_rate_nl_s == UINT32_MAX) {
+    if (object_rate == UINT32_MAX) {
         flags |= PFE_EST_SATURATED;
     }
     est->out.flags = flags | PFE_EST_VALID;
