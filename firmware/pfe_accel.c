@@ -32,14 +32,17 @@ void pfe_accel_update(pfe_accel_filter_t *f, int32_t speed_mm_s, uint32_t period
     }
     const int32_t k = (periods < 1U) ? 1 : ((periods > 10U) ? 10 : (int32_t)periods);
     /* v' = v + a k T with T = 1/10 s. |a| <= 2^24.3 and k <= 10 keep a k
-     * below 2^28; v, z <= 7e7 keep r below 2^28.2 and 3 r below 2^30. */
+     * below 2^28; v, z <= 7e7 keep r below 2^28.2 and 3 r below 2^30. The
+     * new speed, below 7e7 + 2.1e7 + 4.8e7 < 2^28, and the new
+     * acceleration, below 2.1e7 + 8e7 < 2^27, fit 32 bits before their
+     * clamps. */
     const int32_t predicted = f->speed_um_s + div_round(f->accel_um_s2 * k, 10);
     const int32_t r = z - predicted;
-    const int64_t v = (int64_t)predicted + div_round(r * 3, 10);
+    const int32_t v = predicted + div_round(r * 3, 10);
     /* beta / (k T) = (1/20) / (k / 10) = 1 / (2 k) */
-    const int64_t a = (int64_t)f->accel_um_s2 + div_round(r, 2 * k);
-    f->speed_um_s = (int32_t)pfe_clamp_i64(v, 0, (int64_t)PFE_SPEED_MAX_MM_S * 1000);
-    f->accel_um_s2 = (int32_t)pfe_clamp_i64(a, -PFE_ACCEL_MAX_UM_S2, PFE_ACCEL_MAX_UM_S2);
+    const int32_t a = f->accel_um_s2 + div_round(r, 2 * k);
+    f->speed_um_s = pfe_clamp_i32(v, 0, PFE_SPEED_MAX_MM_S * 1000);
+    f->accel_um_s2 = pfe_clamp_i32(a, -PFE_ACCEL_MAX_UM_S2, PFE_ACCEL_MAX_UM_S2);
     if (f->samples < UINT32_MAX) {
         f->samples++;
     }

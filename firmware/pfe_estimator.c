@@ -17,6 +17,7 @@ int pfe_estimator_init(pfe_estimator_t *est, const pfe_platoon_t *platoon)
     est->ticks_since_sample = 0U;
     est->trig_grade_ppm = 0;
     pfe_grade_accel(0, platoon->gravity_um_s2, &est->trig);
+    est->object_along_um_s2 = 0;
     est->fuel_used_10pl = 0U;
     for (uint32_t i = 0U; i < PFE_MAX_VEHICLES; i++) {
         est->pos_fuel_used_10pl[i] = 0U;
@@ -66,16 +67,21 @@ static uint32_t track_speed(pfe_estimator_t *est, const pfe_est_input_t *in)
     return flags;
 }
 
+/* total + rate saturated at UINT64_MAX, PFE_EST_SATURATED raised when the
+ * sum reaches it (total + rate >= UINT64_MAX). Below 2^64 - 2^32 a total
+ * plus a rate (< 2^32) stays below UINT64_MAX: the high word alone rules
+ * that out on every step but the last few before saturation. */
 static uint64_t accumulate(uint64_t total, uint32_t rate, uint32_t *flags)
 {
-    const uint64_t sum = pfe_sat_add_u64(total, rate);
-    if (sum == UINT64_MAX) {
+    uint64_t sum = total + rate;
+    if (((total >> 32) == 0xFFFFFFFFU) && (total >= (UINT64_MAX - rate))) {
         *flags |= PFE_EST_SATURATED;
+        sum = UINT64_MAX;
     }
     return sum;
 }
 
-const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_input_t *in)
+PFE_FLATTEN const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_input_t *in)
 {
     uint32_t flags = 0U;
     if ((in == NULL) || !in->speed_valid) {
@@ -91,7 +97,11 @@ const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_i
         flags |= track_speed(est, in);
     }
     if ((flags & PFE_EST_SPEED_MISSING) == 0U) {
-        est->out.speed_mm_s = (est->filter.speed_um_s + 500) / 1000;
+        /* the filter keeps its speed within 0 .. PFE_SPEED_MAX_MM_S * 1000:
+         * an unsigned division */
+        const uint32_t speed_um_s = (uint32_t)est->filter.speed_um_s;
+        const uint32_t speed_mm_s = (speed_um_s + 500U) / 1000U;
+        est->out.speed_mm_s = (int32_t)speed_mm_s;
         est->out.accel_um_s2 = est->filter.accel_um_s2;
         if (est->filter.samples < PFE_EST_WARMUP_SAMPLES) {
             flags |= PFE_EST_WARMING_UP;
@@ -115,18 +125,20 @@ const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_i
     const int32_t grade = est->out.grade_ppm;
     if (grade != est->trig_grade_ppm) { /* SSI repeats its value often: reuse */
         pfe_grade_accel(grade, pl->gravity_um_s2, &est->trig);
+        pfe_grade_accel_t small;
+        pfe_platoon_grade_accel(pl, grade, &small);
+        est->object_along_um_s2 = small.along_um_s2;
         est->trig_grade_ppm = grade;
     }
 
     /* v <= PFE_SPEED_MAX_MM_S and a within +-PFE_ACCEL_MAX_UM_S2, as the
      * filter keeps them: what the inline forces below require. */
     const uint64_t v2 = (uint64_t)(uint32_t)v * (uint32_t)v;
-    pfe_grade_accel_t small;
-    pfe_platoon_grade_accel(pl, grade, &small);
-    const int32_t force = pfe_platoon_fuel_force_n(pl, v2, a, small.along_um_s2);
+    const int32_t force = pfe_platoon_fuel_force_n(pl, v2, a, est->object_along_um_s2);
     est->out.wheel_force_n = force;
-    est->out.fuel_rate_nl_s = pfe_fuel_rate_nl_s(force, v, pl->object.power_aux_w, pl->object.fuel_q20);
-    est->fuel_used_10pl = accumulate(est->fuel_used_10pl, est->out.fuel_rate_nl_s, &flags);
+    const uint32_t object_rate = pfe_fuel_rate_nl_s(force, v, pl->object.power_aux_w, pl->object.fuel_q20);
+    est->out.fuel_rate_nl_s = object_rate;
+    est->fuel_used_10pl = accumulate(est->fuel_used_10pl, object_rate, &flags);
 
     /* Each position: what differs is its coefficients; v^2, a and the
      * grade split are shared, and a position with the coefficients of the
@@ -149,7 +161,7 @@ const pfe_est_output_t *pfe_estimator_step(pfe_estimator_t *est, const pfe_est_i
         est->out.pos_fuel_rate_nl_s[i] = rate;
         est->pos_fuel_used_10pl[i] = accumulate(est->pos_fuel_used_10pl[i], rate, &flags);
     }
-    if (est->out.fuel_rate_nl_s == UINT32_MAX) {
+    if (object_rate == UINT32_MAX) {
         flags |= PFE_EST_SATURATED;
     }
     est->out.flags = flags | PFE_EST_VALID;

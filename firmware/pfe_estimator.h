@@ -74,6 +74,8 @@ typedef struct {
     uint32_t ticks_since_sample;
     int32_t trig_grade_ppm;           /* grade the cached split belongs to */
     pfe_grade_accel_t trig;           /* exact split for the chapter 3 model */
+    int32_t object_along_um_s2;       /* the object model's small-angle g * grade for
+                                       * the same grade (pfe_platoon_grade_accel()) */
     uint64_t fuel_used_10pl;          /* platoon */
     uint64_t pos_fuel_used_10pl[PFE_MAX_VEHICLES];
     pfe_est_output_t out;

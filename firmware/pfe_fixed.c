@@ -98,3 +98,46 @@ uint64_t pfe_udiv_round_u64(uint64_t num, uint64_t den)
     const uint64_t q = pfe_udiv_u64(num, den, &r);
     return (r >= (den - r)) ? (q + 1U) : q;
 }
+
+uint64_t pfe_mul_shift_round_u64(uint64_t a, uint64_t b, uint32_t shift)
+{
+    const uint64_t mask = 0xFFFFFFFFU;
+    const uint64_t a0 = a & mask;
+    const uint64_t a1 = a >> 32;
+    const uint64_t b0 = b & mask;
+    const uint64_t b1 = b >> 32;
+    const uint64_t p00 = a0 * b0;
+    const uint64_t p01 = a0 * b1;
+    const uint64_t p10 = a1 * b0;
+    /* each part below 2^64, their middle sum below 3 * 2^32 */
+    const uint64_t mid = (p00 >> 32) + (p01 & mask) + (p10 & mask);
+    uint64_t hi = (a1 * b1) + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
+    const uint64_t lo = (mid << 32) | (p00 & mask);
+    const uint32_t half_bit = shift - 1U;
+    const uint64_t half = (uint64_t)1 << half_bit;
+    const uint64_t lo_half = lo + half;
+    hi += (lo_half < lo) ? 1U : 0U;
+    uint64_t q = UINT64_MAX;
+    if ((hi >> shift) == 0U) {
+        const uint32_t hi_up = 64U - shift;
+        q = (lo_half >> shift) | (hi << hi_up);
+    }
+    return q;
+}
+
+int32_t pfe_mantissa_i32(int64_t x, uint32_t min_shift, uint32_t *shift)
+{
+    const uint64_t mag = (x < 0) ? (0U - (uint64_t)x) : (uint64_t)x;
+    uint32_t s = min_shift;
+    uint64_t m = mag;
+    if (s > 0U) {
+        m = pfe_udiv_round_u64(mag, (uint64_t)1 << s);
+    }
+    while (m >= ((uint64_t)1 << 31)) {
+        s++;
+        m = pfe_udiv_round_u64(mag, (uint64_t)1 << s);
+    }
+    *shift = s;
+    const int32_t m32 = (int32_t)m;
+    return (x < 0) ? -m32 : m32;
+}

@@ -44,6 +44,17 @@ uint64_t pfe_sat_add_u64(uint64_t a, uint64_t b);
 #define PFE_ALWAYS_INLINE inline
 #endif
 
+/* Inlines every call in a function's body where the compiler can (GCC,
+ * Clang): for the 10 ms estimator step, whose calls (the speed filter, the
+ * grade split, the clamps) would otherwise each pay their call and register
+ * saves every tick. PFE_NO_FORCE_INLINE leaves the choice to the compiler,
+ * as for PFE_ALWAYS_INLINE. */
+#if defined(__GNUC__) && !defined(PFE_NO_FORCE_INLINE)
+#define PFE_FLATTEN __attribute__((flatten))
+#else
+#define PFE_FLATTEN
+#endif
+
 /*
  * x / 2^shift rounded to nearest (halves toward plus infinity),
  * 1 <= shift <= 62, for |x| < 2^62 (every caller states its bound).
@@ -62,6 +73,22 @@ static inline int64_t pfe_mul_q(int64_t a, int32_t b, uint32_t shift)
 {
     return pfe_rshift_round(a * (int64_t)b, shift);
 }
+
+/*
+ * x as m * 2^shift with |m| < 2^31, for a coefficient to be multiplied 32 x
+ * 32 -> 64 bits in a step: the smallest shift >= min_shift, m = x / 2^shift
+ * rounded to nearest (|x| halves up, the sign kept), so m = x exactly when
+ * the shift is 0 or x's low shift bits are 0. |x| < 2^62, min_shift <= 31.
+ * Configuration time only (a loop over the shifts).
+ */
+int32_t pfe_mantissa_i32(int64_t x, uint32_t min_shift, uint32_t *shift);
+
+/*
+ * a * b / 2^shift rounded to nearest (halves up), 1 <= shift <= 63, from the
+ * exact 128-bit product (four 32 x 32 -> 64 bit multiplies); saturates at
+ * UINT64_MAX. For sums turned into results once per call, not per step.
+ */
+uint64_t pfe_mul_shift_round_u64(uint64_t a, uint64_t b, uint32_t shift);
 
 /*
  * num / den rounded down (truncated), any num; *rem (may be NULL) receives

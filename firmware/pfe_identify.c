@@ -382,7 +382,7 @@ static void track_stop(pfe_identify_t *id, const pfe_identify_sample_t *s, uint3
 /* g (cr cos(alpha) + sin(alpha)) in um/s^2 for |grade| <= PFE_ID_GRADE_MAX_PPM
  * (eq. 3.5, 3.6): cos = 1 / sqrt(1 + t^2) ~ 1 - t^2/2 + 3 t^4/8, error below
  * 5 t^6 / 16 = 8e-8 at 8 %, and sin = t cos; in Q30. Cheaper than
- * pfe_grade_accel's Newton steps, which the whole grade range needs. */
+ * pfe_grade_accel's table and Newton step, which the whole grade range needs. */
 static int64_t specific_force_um_s2(const pfe_identify_t *id, int32_t grade_ppm)
 {
     /* grade * 2^30 / 10^6 = grade * round(2^50 / 10^6) / 2^20; |grade| <=

@@ -17,6 +17,17 @@
  * Then every product stays below 2^61 and the integrator, held as U * 2^4
  * (1/16 of an output unit), in 32 bits: this runs in every simulation step
  * on a 32-bit core, so its state and comparisons are 32-bit.
+ *
+ * Each gain is held as a 32-bit mantissa and a power of two, gain_q32 =
+ * m * 2^shift with shift 0 .. 5 (pfe_mantissa_i32(): m = gain exactly below
+ * 2^31, else rounded to 2^-31 of the gain), and the error is
+ * multiplied by 2^shift (|e| 2^shift <= 2^30), so that each product is one
+ * 32 x 32 -> 64 bit multiply. The integral's rate ki e is held below 2^54
+ * (|rate| U/s * 2^8 below 2^30): its error is clamped to 2^54 / |ki| when
+ * that is below PFE_PI_ERROR_MAX (in the simulation's newtons, a rate of
+ * 4.2 MN/s: with the largest gain, 2^35, past 0.52 m/s of error; the
+ * default cruise calibration's gain, 20 milli / s^2 per kg, stays below the
+ * limit for any platoon up to 3200 t).
  */
 #ifndef PFE_PI_H
 #define PFE_PI_H
@@ -32,9 +43,12 @@
 #define PFE_PI_OUT_MAX ((int32_t)1 << 26)
 
 typedef struct {
-    int64_t kp_q32;
-    int64_t ki_q32;
-    int32_t integral_q4;  /* I, output units * 2^4 */
+    int32_t kp_m;           /* kp_q32 = kp_m * kp_scale */
+    int32_t kp_scale;       /* 2^0 .. 2^5 */
+    int32_t ki_m;           /* ki_q32 = ki_m * ki_scale */
+    int32_t ki_scale;
+    int32_t rate_error_max; /* the integral's error limit: |ki| e below 2^54 */
+    int32_t integral_q4;    /* I, output units * 2^4 */
 } pfe_pi_t;
 
 /* Sets gains (clamped to +-PFE_PI_GAIN_MAX_Q32) and presets I to
@@ -52,13 +66,17 @@ static inline int32_t pfe_pi_step_in_range(pfe_pi_t *pi, int32_t error, uint32_t
 {
     const int32_t e = pfe_clamp_i32(error, -PFE_PI_ERROR_MAX, PFE_PI_ERROR_MAX);
 
-    /* kp < 2^35 and |e| <= 2^25: below 2^60; P clamped to +-2^27. */
-    const int32_t p = (int32_t)pfe_clamp_i64(pfe_mul_q(pi->kp_q32, e, 32U), -(1 << 27), 1 << 27);
-    /* ki * e / 2^24 is U/s * 2^8 (< 2^36); times dt (<= 2^20) / 2^20 is
-     * U * 2^4 (< 2^36), clamped to +-2^29 so that I + step fits 32 bits. */
-    const int64_t rate_q8 = pfe_mul_q(pi->ki_q32, e, 24U);
-    const int32_t step_q4 = (int32_t)pfe_clamp_i64(pfe_rshift_round(rate_q8 * (int64_t)dt, 20U),
-                                                   -(1 << 29), 1 << 29);
+    /* |kp_m| < 2^31 times |e| 2^shift <= 2^30: below 2^61, so kp e / 2^32
+     * fits 32 bits; P clamped to +-2^27 there. */
+    const int32_t p = pfe_clamp_i32((int32_t)pfe_mul_q(pi->kp_m, e * pi->kp_scale, 32U),
+                                    -(1 << 27), 1 << 27);
+    /* ki * e / 2^24 is U/s * 2^8, below 2^30 with the rate's error limit;
+     * times dt (<= 2^20), below 2^50, over 2^20 is U * 2^4 (< 2^30),
+     * clamped to +-2^29 so that I + step fits 32 bits. */
+    const int32_t e_rate = pfe_clamp_i32(e, -pi->rate_error_max, pi->rate_error_max);
+    const int32_t rate_q8 = (int32_t)pfe_mul_q(pi->ki_m, e_rate * pi->ki_scale, 24U);
+    const int32_t step_q4 = pfe_clamp_i32((int32_t)pfe_mul_q(rate_q8, (int32_t)dt, 20U),
+                                          -(1 << 29), 1 << 29);
 
     /* |I| <= 2^30, |step| <= 2^29, |P| <= 2^27: every sum below 2^31. */
     const int32_t trial_q4 = pi->integral_q4 + step_q4;

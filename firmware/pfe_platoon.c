@@ -149,7 +149,12 @@ int pfe_platoon_init_finish(pfe_platoon_t *pl, const pfe_platoon_config_t *cfg)
     pl->gravity_um_s2 = cfg->env->gravity_um_s2;
     pl->gravity_q32 = (int64_t)pfe_udiv_round_u64((uint64_t)cfg->env->gravity_um_s2 << 26, POW5_6);
     pl->roll_force_q32 = obj->roll_q32 * (int64_t)cfg->env->gravity_um_s2;
-    pl->inv_mass_q30 = (int64_t)pfe_udiv_round_u64(1000000ULL << 30, mass);
+    /* 10^6 * 2^30 / M <= 2^40 (M >= PFE_MASS_MIN_KG): shift 0 .. 10 */
+    uint32_t inv_shift = 0U;
+    pl->inv_mass_m = pfe_mantissa_i32((int64_t)pfe_udiv_round_u64(1000000ULL << 30, mass), 0U,
+                                      &inv_shift);
+    const uint32_t inv_scale = 1U << inv_shift;
+    pl->inv_mass_scale = (int32_t)inv_scale;
     /* M [kg] * 20 m/s^2 * 4 <= 3.2e6 * 80 < 2^28 */
     pl->force_limit_q2 = (int32_t)mass * (PFE_ACCEL_MAX_UM_S2 / 1000000) * 4;
     obj->mass_q32 = (int64_t)pfe_udiv_round_u64(mass << 26, POW5_6);
@@ -182,6 +187,9 @@ void pfe_platoon_grade_accel(const pfe_platoon_t *pl, int32_t grade_ppm, pfe_gra
 int32_t pfe_platoon_accel_um_s2(const pfe_platoon_t *pl, int32_t net_force_q2)
 {
     const int32_t f = pfe_clamp_i32(net_force_q2, -pl->force_limit_q2, pl->force_limit_q2);
-    /* |f| * inv_mass_q30 <= M * 80 * (10^6 * 2^30 / M + 1) < 2^56.3 */
-    return (int32_t)pfe_rshift_round((int64_t)f * pl->inv_mass_q30, 32U);
+    /* inv_mass_scale <= 2 * 10^6 / M (the mantissa at least 2^30), so
+     * |f| * scale <= M * 80 * 2 * 10^6 / M < 2^28: one 32 x 32 -> 64 bit
+     * multiply, below 2^59; f / M * 10^6 * 4 over 2^2 is the acceleration */
+    const int32_t f_scaled = f * pl->inv_mass_scale;
+    return (int32_t)pfe_rshift_round((int64_t)f_scaled * pl->inv_mass_m, 32U);
 }

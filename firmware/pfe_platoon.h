@@ -61,7 +61,10 @@ typedef struct {
     uint32_t mass_kg;                            /* M */
     uint32_t gravity_um_s2;                      /* g */
     int64_t gravity_q32;                         /* g * 2^32 / 10^6, for g * grade */
-    int64_t inv_mass_q30;                        /* 10^6 * 2^30 / M: um/s^2 per N, * 2^30 */
+    int32_t inv_mass_m;                          /* 10^6 * 2^30 / M (um/s^2 per N, * 2^30)
+                                                  * = inv_mass_m * inv_mass_scale, |m| < 2^31
+                                                  * (pfe_mantissa_i32()) */
+    int32_t inv_mass_scale;                      /* 2^0 .. 2^10 */
     int32_t force_limit_q2;                      /* M * PFE_ACCEL_MAX_UM_S2, N * 2^2 */
     uint32_t formation_air_q32;                  /* c above, N per (mm/s)^2 * 2^32,
                                                   * <= PFE_FORMATION_AIR_MAX_Q32 */
@@ -147,16 +150,20 @@ static inline int32_t pfe_platoon_fuel_force_n(const pfe_platoon_t *pl, uint64_t
                                                int32_t accel_um_s2, int32_t along_um_s2)
 {
     const pfe_vehicle_t *obj = &pl->object;
+    /* the object's air_q32, a sum of 32 positions' below 2^17, is below
+     * 2^22: an unsigned 32 x 64 bit product with v2 < 2^33 */
+    const uint64_t air = (uint64_t)(uint32_t)obj->air_q32 * v2;
     const int64_t sum = (obj->mass_fuel_q32 * accel_um_s2) + pl->roll_force_q32 +
-                        (obj->mass_q32 * along_um_s2) + (obj->air_q32 * (int64_t)v2);
+                        (obj->mass_q32 * along_um_s2) + (int64_t)air;
     return (int32_t)pfe_rshift_round(sum, 32U);
 }
 
 /* Platoon acceleration for a net force in N * 2^2, eq. 4.3: a = F / M in
  * um/s^2, rounded; the force is first clamped to M * PFE_ACCEL_MAX_UM_S2, so
- * the result lies within +-PFE_ACCEL_MAX_UM_S2. 1/M is held in Q30: relative
- * resolution 3e-6 for the largest platoon (3200 t), 4e-8 for one 40 t truck.
- * Fixed shifts only: this runs in every simulation step. */
+ * the result lies within +-PFE_ACCEL_MAX_UM_S2. 1/M is held in Q30 as a
+ * 32-bit mantissa and a power of two: relative resolution 3e-6 for the
+ * largest platoon (3200 t), 1e-9 for one 40 t truck. One 32 x 32 -> 64 bit
+ * multiply and fixed shifts: this runs in every simulation step. */
 int32_t pfe_platoon_accel_um_s2(const pfe_platoon_t *pl, int32_t net_force_q2);
 
 #endif /* PFE_PLATOON_H */

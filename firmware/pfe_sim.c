@@ -10,26 +10,45 @@
 #define POW5_9 1953125ULL
 #define FUEL_FORCE_MAX_Q2 ((int32_t)1 << 27) /* 33.5 MN: above any platoon's traction */
 
-static int32_t grade_at(const pfe_road_t *road, uint32_t position_mm)
+/* The road sample under position_mm (the last one beyond the road's end). */
+static uint32_t sample_at(const pfe_road_t *road, uint32_t position_mm)
 {
     uint32_t k = position_mm / road->spacing_mm;
     if (k >= road->n_samples) {
         k = road->n_samples - 1U;
     }
-    return road->grade_ppm[k];
+    return k;
+}
+
+/* Air drag in N * 2^2 (eq. 4.6): air_q32 [N per (mm/s)^2 * 2^32] below
+ * 2^22 (a platoon's sum, as unsigned 32 bits) times v2 < 2^33, over 2^30,
+ * rounded: one multiply and one multiply-accumulate, below 2^56. */
+static inline int64_t air_q2(int64_t air_q32, uint64_t v2)
+{
+    const uint64_t product = ((uint64_t)(uint32_t)air_q32 * v2) + ((uint64_t)1 << 29);
+    return (int64_t)(product >> 30);
+}
+
+/* Fg = M g grade in N * 2^2 (eq. 4.10, small angle): |grade| <= 5 * 10^5
+ * (checked at init) times weight_scale <= 2^10 is below 2^29, times
+ * |weight_m| < 2^31 below 2^60: one 32 x 32 -> 64 bit multiply, its rounded
+ * high word. */
+static inline int64_t grade_q2(const pfe_sim_t *sim, int32_t grade_ppm)
+{
+    const int32_t g = grade_ppm * sim->weight_scale;
+    return pfe_rshift_round((int64_t)sim->weight_m * g, 32U);
 }
 
 /* Fa + Fr + Fg of the object model at speed v and grade (eq. 4.6 to 4.10),
  * N * 2^2 (finer than whole newtons, whose rounding bias would add up over a
  * route): the sum of pfe_vehicle_resistance_n() with the small-angle grade of
  * pfe_platoon_grade_accel(), its constant and linear parts folded at init.
- * air_q32 < 2^22 and v < 2^17: below 2^56; weight_q36 < 2^42 (3200 t) and
- * |grade| <= 2^19 (checked at init): below 2^61. The sum, at most about
- * 3.4e7 N, fits 32 bits in N * 2^2. */
-static int32_t resistance_q2(const pfe_sim_t *sim, int64_t v2, int32_t grade_ppm)
+ * air_q32 < 2^22 and v < 2^17: below 2^56. The sum, at most about 3.4e7 N,
+ * fits 32 bits in N * 2^2. */
+static int32_t resistance_q2(const pfe_sim_t *sim, uint64_t v2, int32_t grade_ppm)
 {
-    return (int32_t)(pfe_rshift_round(sim->platoon->object.air_q32 * v2, 30U) + sim->roll_q2 +
-                     pfe_rshift_round(sim->weight_q36 * (int64_t)grade_ppm, 34U));
+    return (int32_t)(air_q2(sim->platoon->object.air_q32, v2) + sim->roll_q2 +
+                     grade_q2(sim, grade_ppm));
 }
 
 /* Per-kg gain [1/s * 1000] to N per um/s * 2^32: M * k * 2^32 / 10^9. */
@@ -101,6 +120,8 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     sim->steps = 0U;
     sim->time_q16 = 0U;
     sim->fuel_nl = 0U;
+    sim->work_q2_mm = 0U;
+    sim->pull_time_q16 = 0U;
     sim->grade_ppm = road->grade_ppm[0];
     sim->accel_um_s2 = 0;
     sim->fuel_step_nl = 0U;
@@ -109,9 +130,20 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     /* cr M g: roll_q32 < 2^31 times g < 2^24, over 2^30. */
     sim->roll_q2 = pfe_rshift_round(obj->roll_q32 * (int64_t)platoon->gravity_um_s2, 30U);
     /* M g [N] * 2^36 / 10^6 = mass_q32 [kg * 2^32 / 10^6] * g [um/s^2] * 2^4
-     * / 10^6; mass_q32 * g < 2^57, times 2^4 below 2^61. */
-    sim->weight_q36 = (int64_t)pfe_udiv_round_u64(
+     * / 10^6; mass_q32 * g < 2^57, times 2^4 below 2^61; the quotient below
+     * 2^42 (3200 t), so its shift is 2 .. 12. */
+    const int64_t weight_q36 = (int64_t)pfe_udiv_round_u64(
         ((uint64_t)obj->mass_q32 * platoon->gravity_um_s2) << 4, 1000000U);
+    uint32_t shift = 0U;
+    sim->weight_m = pfe_mantissa_i32(weight_q36, 2U, &shift);
+    const uint32_t weight_shift = shift - 2U;
+    const uint32_t weight_scale = 1U << weight_shift;
+    sim->weight_scale = (int32_t)weight_scale;
+    /* mass_fuel_q32 < 2^35 (M + Mj <= 2 M <= 6.4e6 kg: below 2^34.7): shift
+     * 0 .. 4, the scale 2^2 .. 2^6, so |a| 2^6 <= 2^30.3. */
+    sim->mass_fuel_m = pfe_mantissa_i32(obj->mass_fuel_q32, 0U, &shift);
+    const uint32_t mass_fuel_scale = 4U << shift;
+    sim->mass_fuel_scale = (int32_t)mass_fuel_scale;
     /* Paux [mW] * fuel_q20 [nL/mJ * 2^20] / 2^12 = nL/s * 2^8; Paux <= 3.2e9 mW
      * and fuel_q20 < 2^22 keep it below 2^41. */
     sim->aux_fuel_q8 = pfe_rshift_round((int64_t)obj->power_aux_w * 1000 * obj->fuel_q20, 12U);
@@ -136,7 +168,7 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
         }
     }
     const uint64_t v2_init = (uint64_t)initial_speed_mm_s * (uint32_t)initial_speed_mm_s;
-    const int32_t hold = (resistance_q2(sim, (int64_t)v2_init, road->grade_ppm[0]) + 2) / 4;
+    const int32_t hold = (resistance_q2(sim, v2_init, road->grade_ppm[0]) + 2) / 4;
     const int32_t f_max = pfe_platoon_force_max_v2_n(obj, sim->formation_air_q32, initial_speed_mm_s,
                                                      v2_init);
     sim->wheel_force_n = pfe_clamp_i32(hold, -(int32_t)obj->brake_max_n, f_max);
@@ -167,10 +199,10 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
     /* ds <= 16000 mm: ds * 2^16 < 2^30; v >= 1000 mm/s: dt <= 16 s (2^20 in Q16). */
     const uint32_t dt_q16 = ((ds << 16) + (v / 2U)) / v;
 
-    const int32_t grade = grade_at(road, sim->position_mm + (ds / 2U));
+    const uint32_t sample = sample_at(road, sim->position_mm + (ds / 2U));
+    const int32_t grade = road->grade_ppm[sample];
     const uint64_t v2u = (uint64_t)v * v;
-    const int64_t v2 = (int64_t)v2u;
-    const int32_t resist_q2 = resistance_q2(sim, v2, grade);
+    const int32_t resist_q2 = resistance_q2(sim, v2u, grade);
     /* Limits in order and within range (pfe_platoon_force_max_v2_n()), dt <= 2^20 (above). */
     const int32_t f_max = pfe_platoon_force_max_v2_n(obj, sim->formation_air_q32, v_mm_s, v2u);
     const int32_t force = pfe_pi_step_in_range(&sim->pi, sim->set_speed_um_s - sim->speed_um_s,
@@ -179,44 +211,37 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
     const int32_t accel = pfe_platoon_accel_um_s2(pl, (force * 4) - resist_q2);
     /* |a| <= 2^24.3, dt <= 2^20: dv below 2^28.3, and the sum with a speed
      * <= 7e7 um/s stays inside int32. */
-    const int32_t dv = (int32_t)pfe_mul_q((int64_t)accel, (int32_t)dt_q16, 16U);
+    const int32_t dt_i = (int32_t)dt_q16;
+    const int32_t dv = (int32_t)pfe_rshift_round((int64_t)accel * dt_i, 16U);
     sim->speed_um_s = pfe_clamp_i32(sim->speed_um_s + dv, 0, PFE_SPEED_MAX_MM_S * 1000);
 
-    /* eq. 3.7 / 4.14 in N * 2^2: (M + Mj) a is within M * 20 m/s^2 * 1.03
-     * (mass_fuel_q32 < 2^35, |a| <= 2^24.3), the sum below 2^30. */
+    /* eq. 3.7 / 4.14 in N * 2^2: (M + Mj) a is within M * 20 m/s^2 * 2
+     * (|a| * mass_fuel_scale <= 2^30.3 times |mass_fuel_m| < 2^31: one
+     * 32 x 32 -> 64 bit multiply), the sum below 2^30. */
+    const int32_t a_scaled = accel * sim->mass_fuel_scale;
     const int32_t fuel_force_q2 =
-        (int32_t)pfe_mul_q(obj->mass_fuel_q32, accel, 30U) + resist_q2;
-    uint64_t fuel_step = 0U;
+        (int32_t)pfe_rshift_round((int64_t)sim->mass_fuel_m * a_scaled, 32U) + resist_q2;
+    uint64_t step_work = 0U;
+    uint32_t step_pull = 0U;
     if (fuel_force_q2 > 0) {
-        /* Work Fw' ds and Paux dt in mJ times nL/mJ, in two products:
-         * Fw' [N * 2^2] <= 2^27 times ds * fuel_q20 (< 2^14 * 2^22) is below
-         * 2^63; aux_fuel_q8 < 2^41 times dt <= 2^20 below 2^61. */
-        const int32_t f = (fuel_force_q2 < FUEL_FORCE_MAX_Q2) ? fuel_force_q2 : FUEL_FORCE_MAX_Q2;
-        const uint64_t work_coef_u = (uint64_t)ds * (uint32_t)obj->fuel_q20;
-        const int64_t work_coef = (int64_t)work_coef_u;
-        const int64_t work_nl = pfe_rshift_round((int64_t)f * work_coef, 22U);
-        /* aux_fuel_q8 >= 0: an unsigned 64 x 32 bit product. */
-        const int64_t aux_nl =
-            (int64_t)((((uint64_t)sim->aux_fuel_q8 * dt_q16) + ((uint64_t)1 << 23)) >> 24);
-        const int64_t step_nl = work_nl + aux_nl;
-        fuel_step = (uint64_t)step_nl;
-        if (with_sums) {
-            sums->aux_nl += (uint64_t)aux_nl;
-        }
+        /* The work Fw' ds, Fw' [N * 2^2] <= 2^27 times ds < 2^14: one
+         * 32 x 32 -> 64 bit multiply; the fuel is made from the sums
+         * (sim_fuel_nl()). */
+        const uint32_t f = (fuel_force_q2 < FUEL_FORCE_MAX_Q2) ? (uint32_t)fuel_force_q2
+                                                                : (uint32_t)FUEL_FORCE_MAX_Q2;
+        step_work = (uint64_t)f * ds;
+        step_pull = dt_q16;
     }
     if (with_sums && with_bound && (force > 0)) {
-        /* Air, rolling and the bound's grade at the step's start speed, in
-         * N * 2^2 as resistance_q2(), clamped to +-FUEL_FORCE_MAX_Q2; times
-         * ds * fuel as the work above: below 2^63. */
-        uint32_t k = (sim->position_mm + (ds / 2U)) / road->spacing_mm;
-        k = (k < road->n_samples) ? k : (road->n_samples - 1U);
-        int64_t f = pfe_rshift_round(sums->bound_air_q32 * v2, 30U) + sim->roll_q2 +
-                    pfe_rshift_round(sim->weight_q36 * ((int64_t)sums->bound_grade_20ppm[k] * 20), 34U);
-        f = (f > FUEL_FORCE_MAX_Q2) ? FUEL_FORCE_MAX_Q2 : ((f < -FUEL_FORCE_MAX_Q2) ? -FUEL_FORCE_MAX_Q2 : f);
-        sums->bound_nl += pfe_rshift_round(f * ((int64_t)ds * sums->bound_fuel_q20), 22U);
+        /* The bound's three sums (pfe_sim.h): v^2 / 2 < 2^32 times ds, the
+         * bound's grade (|g| <= 25000) times ds: two multiply-accumulates. */
+        const uint32_t v2_half = (uint32_t)(v2u >> 1);
+        sums->bound_v2_ds += (uint64_t)v2_half * ds;
+        sums->bound_ds_mm += ds;
+        sums->bound_grade_ds += (int64_t)sums->bound_grade_20ppm[sample] * (int32_t)ds;
     }
-    sim->fuel_nl = pfe_sat_add_u64(sim->fuel_nl, fuel_step);
-    sim->fuel_step_nl = fuel_step;
+    sim->work_q2_mm += step_work;
+    sim->pull_time_q16 += step_pull;
     sim->time_q16 += dt_q16;
     sim->position_mm += ds;
     sim->steps++;
@@ -224,6 +249,60 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
     sim->wheel_force_n = force;
     sim->accel_um_s2 = accel;
     return PFE_SIM_RUNNING;
+}
+
+/* The fuel of the sums (pfe_sim.h): the work Fw' ds [N * 2^2 * mm = mJ *
+ * 2^2] times fuel_q20 [nL/mJ * 2^20] over 2^22, and the time [s * 2^16]
+ * times aux_fuel_q8 [nL/s * 2^8] over 2^24, each rounded once: products
+ * below 2^81 and 2^79, exact (pfe_mul_shift_round_u64()). */
+static uint64_t work_fuel_nl(uint64_t work_q2_mm, int64_t fuel_q20)
+{
+    return pfe_mul_shift_round_u64(work_q2_mm, (uint64_t)fuel_q20, 22U);
+}
+
+static uint64_t aux_fuel_nl(const pfe_sim_t *sim, uint64_t pull_time_q16)
+{
+    return pfe_mul_shift_round_u64(pull_time_q16, (uint64_t)sim->aux_fuel_q8, 24U);
+}
+
+static uint64_t sim_fuel_nl(const pfe_sim_t *sim, uint64_t work_q2_mm, uint64_t pull_time_q16)
+{
+    return pfe_sat_add_u64(work_fuel_nl(work_q2_mm, sim->platoon->object.fuel_q20),
+                           aux_fuel_nl(sim, pull_time_q16));
+}
+
+/* The bound's fuel (pfe_sim_sums_t): its work in N * 2^2 * mm, the air
+ * part bound_air [N per (mm/s)^2 * 2^32] * 2 sum v^2 ds / 2 / 2^30 (below
+ * 2^22 * 2^63 / 2^29), the rolling part roll_q2 (< 2^25) * sum ds (< 2^32),
+ * the grade part M g [as weight_m * 2^(2 + s) per ppm] * 20 * sum g20 ds
+ * / 2^32 (below 2^45.4 * 2^47 / 2^32); each below 2^60, rounded once, and
+ * the work's fuel rounded halves away from zero. */
+static int64_t bound_fuel_nl(const pfe_sim_t *sim, const pfe_sim_sums_t *sums)
+{
+    const int64_t air = (int64_t)pfe_mul_shift_round_u64((uint64_t)sums->bound_air_q32,
+                                                         sums->bound_v2_ds, 29U);
+    const int64_t roll = sim->roll_q2 * (int64_t)sums->bound_ds_mm;
+    const uint64_t weight_20 = (uint64_t)(int64_t)sim->weight_m * 20U * (uint64_t)sim->weight_scale;
+    const int64_t g_ds = sums->bound_grade_ds;
+    const uint64_t g_mag = (g_ds < 0) ? (0U - (uint64_t)g_ds) : (uint64_t)g_ds;
+    const int64_t grade_mag = (int64_t)pfe_mul_shift_round_u64(weight_20, g_mag, 32U);
+    const int64_t work = air + roll + ((g_ds < 0) ? -grade_mag : grade_mag);
+    const uint64_t magnitude = (work < 0) ? (0U - (uint64_t)work) : (uint64_t)work;
+    const int64_t nl = (int64_t)work_fuel_nl(magnitude, sums->bound_fuel_q20); /* below 2^60 */
+    return (work < 0) ? -nl : nl;
+}
+
+/* The results of the sums after a call's steps: fuel_nl and what they added
+ * to it, and the sums' fuel. */
+static void finish_run(pfe_sim_t *sim, uint64_t pull_before_q16, pfe_sim_sums_t *sums)
+{
+    const uint64_t fuel = sim_fuel_nl(sim, sim->work_q2_mm, sim->pull_time_q16);
+    sim->fuel_step_nl = fuel - sim->fuel_nl;
+    sim->fuel_nl = fuel;
+    if (sums != NULL) {
+        sums->aux_nl += aux_fuel_nl(sim, sim->pull_time_q16) - aux_fuel_nl(sim, pull_before_q16);
+        sums->bound_nl = bound_fuel_nl(sim, sums);
+    }
 }
 
 int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps, pfe_sim_sums_t *sums)
@@ -253,7 +332,9 @@ int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps, pfe_
         }
         *sums = t;
     }
+    const uint64_t pull_before = sim->pull_time_q16;
     *sim = s;
+    finish_run(sim, pull_before, sums);
     return r;
 }
 

@@ -15,6 +15,10 @@
  *   v      += a dt
  *   fuel   += delta (Fw' ds + Paux dt) / (eta rho_d), Fw' = (M + Mj) a +
  *             Fa + Fr + Fg (eq. 3.7, 4.14: work Fw' v dt = Fw' ds)
+ * The fuel is summed as work and time: each step adds its Fw' ds and its
+ * dt (where delta is 1) to two exact integer sums, and the fuel is made
+ * from them, rounded once, when pfe_sim_run() returns (not rounded a step
+ * at a time, which added up to half a nL a step).
  * A step in distance rather than time keeps the cost of a route to its
  * length / ds steps whatever the speed (1200 steps for 12 km at 10 m).
  *
@@ -68,7 +72,14 @@ typedef struct {
     /* Object-model resistance split for the step (eq. 4.8, 4.10): the
      * rolling part is constant, the grade part linear in the grade. */
     int64_t roll_q2;         /* cr M g, N * 2^2 */
-    int64_t weight_q36;      /* M g in N, * 2^36 / 10^6: Fg = weight * grade_ppm / 2^36 */
+    int32_t weight_m;        /* M g in N * 2^36 / 10^6 (below 2^42) = weight_m * 2^s, s >= 2
+                              * (pfe_mantissa_i32()): Fg [N * 2^2] = weight_m *
+                              * (grade_ppm * weight_scale) / 2^32 */
+    int32_t weight_scale;    /* 2^(s - 2), at most 2^10 */
+    int32_t mass_fuel_m;     /* (M + Mj) as pfe_vehicle_t.mass_fuel_q32 (< 2^35) = mass_fuel_m
+                              * * 2^s: (M + Mj) a [N * 2^2] = mass_fuel_m * (a *
+                              * mass_fuel_scale) / 2^32 */
+    int32_t mass_fuel_scale; /* 2^(s + 2), at most 2^6 */
     int64_t aux_fuel_q8;     /* fuel for sum Paux, nL/s * 2^8 (eq. 4.14) */
     uint32_t ctrl_tau_ms;    /* the controller's time constant, min(1 / kp, 1 / sqrt(ki)) */
     uint32_t stiff_below_mm_s; /* below this speed a step may be shortened (see the top) */
@@ -78,12 +89,17 @@ typedef struct {
     uint32_t position_mm;
     uint32_t steps;
     uint64_t time_q16;       /* s * 2^16 */
-    uint64_t fuel_nl;        /* platoon total, eq. 4.14 */
+    uint64_t fuel_nl;        /* platoon total, eq. 4.14: the fuel of the two sums below,
+                              * each rounded to the nL */
+    uint64_t work_q2_mm;     /* sum of Fw' ds over the steps with Fw' > 0, N * 2^2 * mm
+                              * (each Fw' at most 2^27, so below 2^59 for any road) */
+    uint64_t pull_time_q16;  /* sum of dt over the same steps, s * 2^16 */
     /* What the last step used and produced. */
     int32_t grade_ppm;
     int32_t wheel_force_n;   /* controller output */
     int32_t accel_um_s2;
-    uint64_t fuel_step_nl;
+    uint64_t fuel_step_nl;   /* what the last call's steps added to fuel_nl: pfe_sim_step()'s,
+                              * its step's */
 } pfe_sim_t;
 
 /*
@@ -111,24 +127,35 @@ int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road);
 /*
  * Sums over a run besides its fuel (pfe_sim_run()), for the prediction's
  * bounds (pfe_predict.h):
- *   aux_nl    the auxiliaries' part of fuel_nl;
- *   bound_nl  when bound_grade_20ppm is not NULL, the work of a fuel bound
- *             over the steps where the controller pulls (Fw > 0):
- *             (bound_air v^2 + Fr + M g bound_grade[k]) ds * bound_fuel, v
- *             the step's starting speed, k the sample of its midpoint;
- *             negative downhill.
+ *   aux_nl    the auxiliaries' part of fuel_nl (the steps' time summed, its
+ *             fuel rounded once: pfe_sim_t.pull_time_q16);
+ *   bound_*   when bound_grade_20ppm is not NULL, the work of a fuel bound
+ *             over the steps where the controller pulls (Fw > 0),
+ *             sum (bound_air v^2 + Fr + M g bound_grade[k]) ds, v the step's
+ *             starting speed, k the sample of its midpoint, negative
+ *             downhill: linear in v^2, 1 and the grade, it is summed as
+ *             three sums, sum v^2 ds / 2 (v^2 / 2 rounded down), sum ds and
+ *             sum bound_grade ds, each exact;
+ *   bound_nl  that work's fuel at bound_fuel, made from the three sums
+ *             when pfe_sim_run() returns and rounded once to the nearest nL
+ *             (halves away from zero).
  */
 typedef struct {
     const int16_t *bound_grade_20ppm; /* one per road sample, in 20 ppm (+-25000); NULL: no bound */
-    int64_t bound_air_q32;            /* as pfe_vehicle_t.air_q32 */
+    int64_t bound_air_q32;            /* as pfe_vehicle_t.air_q32, at most
+                                       * PFE_FORMATION_AIR_MAX_Q32 (a platoon's) */
     int64_t bound_fuel_q20;           /* as pfe_vehicle_t.fuel_q20 */
+    uint64_t bound_v2_ds;             /* sum v^2 / 2 ds, (mm/s)^2 * mm: below 2^63 for any road */
+    uint64_t bound_ds_mm;             /* sum ds, mm */
+    int64_t bound_grade_ds;           /* sum bound_grade ds, 20 ppm * mm: below 2^47 */
     int64_t bound_nl;
     uint64_t aux_nl;
 } pfe_sim_sums_t;
 
 /*
  * Up to max_steps steps (the same as calling pfe_sim_step() that often, at
- * less cost per step), adding to *sums unless it is NULL: stops early at the
+ * less cost per step, but for fuel_step_nl: what this call's steps added),
+ * adding to *sums unless it is NULL: stops early at the
  * end of the road or on a stall; max_steps UINT32_MAX runs to the end.
  * Returns PFE_SIM_RUNNING (max_steps taken, more to go), PFE_SIM_DONE or
  * PFE_ESTALL.

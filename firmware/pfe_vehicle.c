@@ -55,6 +55,15 @@ static inline int32_t mul_q_i32(int32_t a, int32_t b, uint32_t shift)
 
 void pfe_grade_accel(int32_t grade_ppm, uint32_t gravity_um_s2, pfe_grade_accel_t *out)
 {
+    /* 1 / sqrt(1 + k / 64) in Q30, k = 0 .. 16: round(2^30 / sqrt(1 + k / 64)),
+     * the first guess below, by linear interpolation over x =
+     * grade^2 in 0 .. 0.25 (segments of 1/64: the chord of this convex function
+     * lies above it by h^2 f'' / 8 <= (1/64)^2 * 0.75 / 8 = 2.3e-5 at most). */
+    static const int32_t k_inv_sqrt_q30[17] = {
+        1073741824, 1065450257, 1057347856, 1049427536, 1041682578, 1034106604,
+        1026693558, 1019437682, 1012333500, 1005375799, 998559613,  991880210,
+        985333074,  978913898,  972618566,  966443148,  960383883,
+    };
     /* Every operand and result below fits 32 bits (the bounds beside each),
      * so each product is one 32 x 32 -> 64 bit multiply. */
     const int32_t one_q30 = (int32_t)1 << 30;
@@ -64,24 +73,27 @@ void pfe_grade_accel(int32_t grade_ppm, uint32_t gravity_um_s2, pfe_grade_accel_
     const int32_t g_q30 = mul_q_i32(grade, 1125899907, 20U);
     const int32_t x = mul_q_i32(g_q30, g_q30, 30U); /* grade^2 <= 0.25: <= 2^28 */
     const int32_t s = one_q30 + x;                /* 1 + grade^2 < 2^30.4 */
-    /* 1/sqrt(1 + x) ~ 1 - x/2 + 3x^2/8 (error <= 5e-3 at x = 0.25), then two
-     * Newton steps y <- y (3 - s y^2) / 2, each squaring the relative error.
-     * 3 x^2 < 2^58, so 3 x^2 / 2^33 < 2^25. y stays within 2^30 (1 + 1e-8),
-     * so y^2 and s y^2 are below 2^31, and 3 - s y^2, within 2^31 (1 +- 0.02),
-     * fits 32 bits unsigned: y times it is below 2^62. */
-    const int64_t x2_3 = 3 * ((int64_t)x * x);
-    const uint64_t x2_3_round = (uint64_t)x2_3 + ((uint64_t)1 << 32);
-    int32_t y = one_q30 - (x / 2) + (int32_t)(uint32_t)(x2_3_round >> 33);
-    for (uint32_t k = 0U; k < 2U; k++) {
-        const int32_t y2 = mul_q_i32(y, y, 30U);
-        const int32_t sy2 = mul_q_i32(s, y2, 30U);
-        const uint32_t t = (3U * (uint32_t)one_q30) - (uint32_t)sy2;
-        const uint64_t yt = ((uint64_t)(uint32_t)y * t) + ((uint64_t)1 << 30);
-        y = (int32_t)(uint32_t)(yt >> 31);
-    }
-    const int32_t sin_q30 = mul_q_i32(g_q30, y, 30U);
+    /* 1/sqrt(1 + x): the table's chord (relative error <= 2.3e-5, the
+     * difference of two entries below 2^23 times the offset in its segment
+     * below 2^24: below 2^47), then one Newton step y <- y (3 - s y^2) / 2,
+     * which squares the relative error (1.5 e^2: 8e-10, with the Q30
+     * roundings below 2e-9). y stays within 2^30 (1 + 1e-8), so y^2 and
+     * s y^2 are below 2^31, and 3 - s y^2, within 2^31 (1 +- 0.02), fits 32
+     * bits unsigned: y times it is below 2^62. */
+    const uint32_t top = (uint32_t)x >> 24; /* x <= 2^28: 0 .. 16 */
+    const uint32_t seg = (top < 15U) ? top : 15U;
+    const int32_t offset = x - (int32_t)(seg << 24);
+    const int32_t y0 = k_inv_sqrt_q30[seg];
+    const int32_t y0_step = k_inv_sqrt_q30[seg + 1U] - y0;
+    const int32_t y = y0 + mul_q_i32(y0_step, offset, 24U);
+    const int32_t y2 = mul_q_i32(y, y, 30U);
+    const int32_t sy2 = mul_q_i32(s, y2, 30U);
+    const uint32_t t = (3U * (uint32_t)one_q30) - (uint32_t)sy2;
+    const uint64_t yt = ((uint64_t)(uint32_t)y * t) + ((uint64_t)1 << 30);
+    const int32_t y_newton = (int32_t)(uint32_t)(yt >> 31);
+    const int32_t sin_q30 = mul_q_i32(g_q30, y_newton, 30U);
     /* g < 2^24 and |sin|, cos <= 2^30: products below 2^54. */
-    out->normal_um_s2 = mul_q_i32((int32_t)gravity_um_s2, y, 30U);
+    out->normal_um_s2 = mul_q_i32((int32_t)gravity_um_s2, y_newton, 30U);
     out->along_um_s2 = mul_q_i32((int32_t)gravity_um_s2, sin_q30, 30U);
 }
 

@@ -63,8 +63,8 @@ int pfe_vehicle_init(pfe_vehicle_t *veh, const pfe_vehicle_calib_t *calib,
 
 /*
  * g sin(alpha) and g cos(alpha) for grade = tan(alpha), exactly (not the
- * small-angle forms): cos = 1 / sqrt(1 + grade^2) by a second-order series
- * and two Newton steps in Q30, error below 2e-9 over the grade range.
+ * small-angle forms): cos = 1 / sqrt(1 + grade^2) from a 17-entry table's
+ * chord and one Newton step in Q30, error below 2e-9 over the grade range.
  * grade_ppm is clamped to +-PFE_GRADE_MAX_PPM.
  */
 void pfe_grade_accel(int32_t grade_ppm, uint32_t gravity_um_s2, pfe_grade_accel_t *out);
@@ -112,7 +112,8 @@ int32_t pfe_wheel_force_max_n(uint32_t power_max_w, uint32_t traction_max_n, int
 /*
  * Fuel rate, eq. 3.8 to 3.11: 0 when force_n <= 0 (fuel cut), else
  * (force_n * v + Paux) / (eta rho_d), in nL/s, rounded, saturating at
- * UINT32_MAX (4.29 L/s). fuel_q20 comes from pfe_vehicle_t.
+ * UINT32_MAX (4.29 L/s). fuel_q20 comes from pfe_vehicle_t. A speed below
+ * 0 (outside the range above) counts as 0: the rate of Paux alone.
  */
 static inline uint32_t pfe_fuel_rate_nl_s(int32_t force_n, int32_t speed_mm_s,
                                           uint32_t power_aux_w, int64_t fuel_q20)
@@ -120,12 +121,15 @@ static inline uint32_t pfe_fuel_rate_nl_s(int32_t force_n, int32_t speed_mm_s,
     if (force_n <= 0) {
         return 0U; /* eq. 3.9: fuel cut */
     }
-    /* N * mm/s = mW; <= 2^31 * 2^17 = 2^48, so add Paux and clamp to 2^40 mW
-     * (1.1 GW) before scaling: with fuel_q20 < 2^22 the product stays below
-     * 2^62. Inline: it runs for the platoon and every position every 10 ms. */
-    const int64_t power_mw = ((int64_t)force_n * (int64_t)speed_mm_s) +
-                             ((int64_t)power_aux_w * 1000);
-    const uint64_t p = (uint64_t)pfe_clamp_i64(power_mw, 0, PFE_FUEL_POWER_MAX_MW);
+    /* N * mm/s = mW; 0 < force < 2^31 and 0 <= v < 2^31: unsigned, one
+     * multiply-accumulate onto Paux (< 2^42 mW), below 2^63; clamped to 2^40
+     * mW (1.1 GW) before scaling: with fuel_q20 < 2^22 the product stays
+     * below 2^62. Inline: it runs for the platoon and every position every
+     * 10 ms. */
+    const uint32_t v = (speed_mm_s > 0) ? (uint32_t)speed_mm_s : 0U;
+    const uint64_t power_mw = ((uint64_t)(uint32_t)force_n * v) + ((uint64_t)power_aux_w * 1000U);
+    const uint64_t p = (power_mw < (uint64_t)PFE_FUEL_POWER_MAX_MW) ? power_mw
+                                                                      : (uint64_t)PFE_FUEL_POWER_MAX_MW;
     /* p >= 0 and 0 < fuel_q20 < 2^22: an unsigned 64 x 32 bit product. */
     const uint64_t rate = ((p * (uint32_t)fuel_q20) + ((uint64_t)1 << 19)) >> 20;
     return (rate > (uint64_t)UINT32_MAX) ? UINT32_MAX : (uint32_t)rate;

@@ -42,6 +42,44 @@ static void test_rounding_shift_is_to_nearest_for_both_signs(void **state)
     assert_int_equal(pfe_udiv_round_u64(9U, 0U), 0U);
 }
 
+static void test_wide_products_and_mantissas(void **state)
+{
+    (void)state;
+    /* a * b / 2^shift from the 128-bit product, rounded halves up. */
+    assert_int_equal(pfe_mul_shift_round_u64(3U, 5U, 1U), 8U);  /* 7.5 -> 8 */
+    assert_int_equal(pfe_mul_shift_round_u64(3U, 3U, 2U), 2U);  /* 2.25 -> 2 */
+    assert_int_equal(pfe_mul_shift_round_u64((uint64_t)1 << 40, (uint64_t)1 << 40, 40U),
+                     (uint64_t)1 << 40);
+    /* (2^33 + 1) 2^33 / 2^3 = 2^63 + 2^30: the product beyond 64 bits */
+    assert_int_equal(pfe_mul_shift_round_u64(((uint64_t)1 << 33) + 1U, (uint64_t)1 << 33, 3U),
+                     9223372037928517632U);
+    /* (2^64 - 1) / 2 = 2^63 - 0.5 -> 2^63: the rounding carries into the high part */
+    assert_int_equal(pfe_mul_shift_round_u64(UINT64_MAX, 1U, 1U), 9223372036854775808U);
+    /* the largest work of a road (2^59 mJ * 2^2) at 2^22 nL/mJ * 2^20 */
+    assert_int_equal(pfe_mul_shift_round_u64((uint64_t)1 << 59, (uint64_t)1 << 22, 22U),
+                     (uint64_t)1 << 59);
+    assert_int_equal(pfe_mul_shift_round_u64(UINT64_MAX, UINT64_MAX, 1U), UINT64_MAX);
+    assert_int_equal(pfe_mul_shift_round_u64((uint64_t)1 << 40, (uint64_t)1 << 40, 16U), UINT64_MAX);
+
+    /* x = m * 2^shift, |m| < 2^31, the smallest shift from min_shift. */
+    uint32_t shift = 99U;
+    assert_int_equal(pfe_mantissa_i32(1000, 0U, &shift), 1000);
+    assert_int_equal(shift, 0U);
+    assert_int_equal(pfe_mantissa_i32(2147483647, 0U, &shift), 2147483647);
+    assert_int_equal(shift, 0U);
+    assert_int_equal(pfe_mantissa_i32((int64_t)1 << 32, 0U, &shift), 1073741824);
+    assert_int_equal(shift, 2U);
+    /* 2^32 - 1: at shift 1 it rounds to 2^31, which does not fit */
+    assert_int_equal(pfe_mantissa_i32(((int64_t)1 << 32) - 1, 0U, &shift), 1073741824);
+    assert_int_equal(shift, 2U);
+    assert_int_equal(pfe_mantissa_i32(-((int64_t)1 << 35), 0U, &shift), -1073741824);
+    assert_int_equal(shift, 5U);
+    assert_int_equal(pfe_mantissa_i32(5, 2U, &shift), 1);   /* 1.25 -> 1 */
+    assert_int_equal(pfe_mantissa_i32(6, 2U, &shift), 2);   /* 1.5 -> 2 */
+    assert_int_equal(pfe_mantissa_i32(-6, 2U, &shift), -2);
+    assert_int_equal(shift, 2U);
+}
+
 static void test_drag_reduction_table(void **state)
 {
     (void)state;
@@ -104,6 +142,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_saturation_limits),
         cmocka_unit_test(test_rounding_shift_is_to_nearest_for_both_signs),
+        cmocka_unit_test(test_wide_products_and_mantissas),
         cmocka_unit_test(test_drag_reduction_table),
         cmocka_unit_test(test_calibration_checks),
     };

@@ -79,6 +79,25 @@ static void test_pi_saturates_without_windup(void **state)
     assert_int_equal(pfe_pi_step(&pi, 0, ONE_S_Q16, 30, 10), 10);
 }
 
+static void test_pi_integral_rate_limit(void **state)
+{
+    (void)state;
+    pfe_pi_t pi;
+    /* The largest gain, 2^35 (8 U per E per s): the rate's error is held
+     * at 2^54 / 2^35 = 2^19, so one second of an error of 2^25 adds
+     * 2^35 * 2^19 / 2^32 = 2^22 to I (not 2^25, the step's own limit of
+     * 2^29 / 16). */
+    pfe_pi_init(&pi, 0, PFE_PI_GAIN_MAX_Q32, 0);
+    assert_int_equal(pfe_pi_step(&pi, PFE_PI_ERROR_MAX, ONE_S_Q16, -PFE_PI_OUT_MAX, PFE_PI_OUT_MAX),
+                     4194304);
+    /* Below the limit the rate is the gain's: 2^35 * 2^18 / 2^32 = 2^21 more. */
+    assert_int_equal(pfe_pi_step(&pi, (int32_t)1 << 18, ONE_S_Q16, -PFE_PI_OUT_MAX, PFE_PI_OUT_MAX),
+                     4194304 + 2097152);
+    /* A gain above 2^31, 2^32 + 2^30 (1.25): its mantissa keeps it exactly. */
+    pfe_pi_init(&pi, ONE_Q32 + (ONE_Q32 / 4), 0, 0);
+    assert_int_equal(pfe_pi_step(&pi, 1000, ONE_S_Q16, -100000, 100000), 1250);
+}
+
 static void test_pi_in_range_is_the_checked_step(void **state)
 {
     (void)state;
@@ -272,11 +291,50 @@ static void test_sim_arguments_and_last_short_step(void **state)
     assert_in_range(sums.aux_nl, aux_expected - 5U, aux_expected + 5U);
 }
 
+static void test_bound_sums_of_a_steady_run(void **state)
+{
+    (void)state;
+    /* One default truck holding 25 m/s on a flat 21 m road, a bound with
+     * the truck's own drag: its work is (2418.75 N of air + 2746.8 N of
+     * rolling) * 21 m = 108476.55 J, its fuel at 1 / (0.40 * 35800 J/mL)
+     * 7575178.1 nL (within the coefficients' 2^-20 nL/mJ steps, 1e-5). */
+    const pfe_platoon_t pl = platoon_of(1U, &pfe_no_drag_reduction);
+    static const int32_t flat[3] = {0, 0, 0};
+    static const int16_t flat_20ppm[3] = {0, 0, 0};
+    const pfe_road_t road = {flat, 3U, 7000U};
+    pfe_sim_t sim;
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 7000U), PFE_OK);
+    pfe_sim_sums_t sums;
+    memset(&sums, 0, sizeof sums);
+    sums.bound_grade_20ppm = flat_20ppm;
+    sums.bound_air_q32 = pl.object.air_q32;
+    sums.bound_fuel_q20 = pl.object.fuel_q20;
+    assert_int_equal(pfe_sim_run(&sim, &road, UINT32_MAX, &sums), PFE_SIM_DONE);
+    assert_int_equal(sim.steps, 3U);
+    assert_int_equal(sums.bound_ds_mm, 21000U);
+    /* v^2 / 2 = 312500000 (mm/s)^2 times 21000 mm */
+    assert_int_equal(sums.bound_v2_ds, 6562500000000U);
+    assert_int_equal(sums.bound_grade_ds, 0);
+    assert_in_range(sums.bound_nl, 7575178 - 76, 7575178 + 76);
+    /* A grade of 20 ppm units (+1 %) on the bound's window: 40000 kg *
+     * 9.81 * 0.01 * 21 m = 82404 J more, 5754469.3 nL at that efficiency. */
+    static const int16_t up_20ppm[3] = {500, 500, 500};
+    assert_int_equal(pfe_sim_init(&sim, &pl, &pfe_default_cruise, &road, 25000, 25000, 7000U), PFE_OK);
+    memset(&sums, 0, sizeof sums);
+    sums.bound_grade_20ppm = up_20ppm;
+    sums.bound_air_q32 = pl.object.air_q32;
+    sums.bound_fuel_q20 = pl.object.fuel_q20;
+    assert_int_equal(pfe_sim_run(&sim, &road, UINT32_MAX, &sums), PFE_SIM_DONE);
+    assert_int_equal(sums.bound_grade_ds, 10500000);
+    assert_in_range(sums.bound_nl, 7575178 + 5754469 - 133, 7575178 + 5754469 + 133);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pi_proportional_and_integral),
         cmocka_unit_test(test_pi_saturates_without_windup),
+        cmocka_unit_test(test_pi_integral_rate_limit),
         cmocka_unit_test(test_pi_in_range_is_the_checked_step),
         cmocka_unit_test(test_flat_road_needs_129_kw),
         cmocka_unit_test(test_two_percent_upgrade_settles_at_73_7_kmh),
@@ -285,6 +343,7 @@ int main(void)
         cmocka_unit_test(test_n_identical_trucks_without_slipstream_burn_n_times_one),
         cmocka_unit_test(test_too_steep_stalls_with_error),
         cmocka_unit_test(test_sim_arguments_and_last_short_step),
+        cmocka_unit_test(test_bound_sums_of_a_steady_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

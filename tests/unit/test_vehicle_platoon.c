@@ -59,6 +59,41 @@ static void test_grade_split_is_exact_trigonometry(void **state)
     assert_in_range(g.normal_um_s2, 8774331 - 1, 8774331 + 1);
 }
 
+/* sqrt(s) for s in [1, 1.25] in double, by Heron's iteration from 1 (the
+ * Cortex-M4 tests have no libm): eight steps reach double precision. */
+static double sqrt_near_one(double s)
+{
+    double y = 1.0;
+    for (int k = 0; k < 8; k++) {
+        y = 0.5 * (y + (s / y));
+    }
+    return y;
+}
+
+/* The table's chord and one Newton step against double trigonometry over
+ * the whole grade range (every 97 ppm and both ends): within the rounding
+ * of the result, 0.5 um/s^2, plus the Q30 error (2e-9 of g, 0.02 um/s^2). */
+static void test_grade_split_over_the_range(void **state)
+{
+    (void)state;
+    const double g = 9810000.0;
+    double worst = 0.0;
+    for (int32_t grade = -PFE_GRADE_MAX_PPM; grade <= PFE_GRADE_MAX_PPM; grade += 97) {
+        const int32_t at = (grade > (PFE_GRADE_MAX_PPM - 97)) ? PFE_GRADE_MAX_PPM : grade;
+        pfe_grade_accel_t out;
+        pfe_grade_accel(at, 9810000U, &out);
+        const double t = (double)at / 1e6;
+        const double c = 1.0 / sqrt_near_one(1.0 + (t * t));
+        ASSERT_NEAR((double)out.along_um_s2, g * t * c, 0.53);
+        ASSERT_NEAR((double)out.normal_um_s2, g * c, 0.53);
+        const double d = (double)out.normal_um_s2 - (g * c);
+        const double e = (d < 0.0) ? -d : d;
+        worst = (e > worst) ? e : worst;
+    }
+    /* the rounding to whole um/s^2 is reached: the test can fail */
+    ASSERT_GT(worst, 0.4);
+}
+
 static void test_force_limits(void **state)
 {
     (void)state;
@@ -83,6 +118,10 @@ static void test_fuel_rate_and_fuel_cut(void **state)
     assert_int_equal(pfe_fuel_rate_nl_s(-30000, 25000, 4000U, v.fuel_q20), 0);
     /* Saturates instead of wrapping. */
     assert_int_equal(pfe_fuel_rate_nl_s(INT32_MAX, 70000, 100000U, v.fuel_q20), UINT32_MAX);
+    /* A speed below 0 counts as 0: 100 kW alone at 73224 / 2^20 nL/mJ,
+     * 10^8 mW * 73224 / 2^20 = 6983184.8 nL/s. */
+    assert_int_equal(pfe_fuel_rate_nl_s(1000, -5, 100000U, 73224), 6983185);
+    assert_int_equal(pfe_fuel_rate_nl_s(1000, 0, 100000U, 73224), 6983185);
 }
 
 static void test_fuel_force_includes_rotating_mass(void **state)
@@ -336,6 +375,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_truck_flat_90_kmh_needs_129_kw),
         cmocka_unit_test(test_grade_split_is_exact_trigonometry),
+        cmocka_unit_test(test_grade_split_over_the_range),
         cmocka_unit_test(test_force_limits),
         cmocka_unit_test(test_fuel_rate_and_fuel_cut),
         cmocka_unit_test(test_fuel_force_includes_rotating_mass),
