@@ -519,6 +519,17 @@ static uint32_t pgn_of_id(uint32_t id)
     return (pf < 240U) ? ((id >> 8) & 0x3FF00U) : ((id >> 8) & 0x3FFFFU);
 }
 
+/* A message's integer attribute, or 0 when the DBC does not define it or
+ * gives it no integer value (the defaults of every attribute read here). */
+static int64_t message_attr(const dbc_t *dbc, const dbc_message_t *m, const char *name)
+{
+    int64_t v = 0;
+    if ((dbc_attr_def(dbc, DBC_OBJ_MESSAGE, name) == NULL) || (dbc_message_attr_int(dbc, m, name, &v) != 0)) {
+        return 0;
+    }
+    return v;
+}
+
 static int read_message(const dbc_t *dbc, unsigned k, msg_out_t *o)
 {
     const dbc_message_t *m = dbc_message_by_name(dbc, k_msgs[k].name);
@@ -538,30 +549,18 @@ static int read_message(const dbc_t *dbc, unsigned k, msg_out_t *o)
     o->pgn = pgn_of_id(id);
     o->priority = (id >> 26) & 7U;
     o->address = id & 0xFFU;
-    int64_t cycle = 0;
-    if ((dbc_attr_def(dbc, DBC_OBJ_MESSAGE, "GenMsgCycleTime") != NULL) &&
-        (dbc_message_attr_int(dbc, m, "GenMsgCycleTime", &cycle) != 0)) {
-        cycle = 0;
-    }
+    const int64_t cycle = message_attr(dbc, m, "GenMsgCycleTime");
     if ((cycle < 0) || (cycle > 65535)) {
         return fail(m, NULL, "GenMsgCycleTime %lld outside 0 .. 65535 ms", (long long)cycle);
     }
     o->cycle_ms = (uint32_t)cycle;
-    int64_t rx = 0;
-    if ((dbc_attr_def(dbc, DBC_OBJ_MESSAGE, RX_ATTR) != NULL) &&
-        (dbc_message_attr_int(dbc, m, RX_ATTR, &rx) != 0)) {
-        rx = 0;
-    }
+    const int64_t rx = message_attr(dbc, m, RX_ATTR);
     o->rx = rx == RX_ANY;
     o->tx = strcmp(m->transmitter, MODULE_NODE) == 0;
     if (!o->rx && !o->tx) {
         return fail(m, NULL, "neither sent by %s nor received (%s AnySourceAddress)", MODULE_NODE, RX_ATTR);
     }
-    int64_t assumed = 0;
-    if ((dbc_attr_def(dbc, DBC_OBJ_MESSAGE, PERIOD_ATTR) != NULL) &&
-        (dbc_message_attr_int(dbc, m, PERIOD_ATTR, &assumed) != 0)) {
-        assumed = 0;
-    }
+    const int64_t assumed = message_attr(dbc, m, PERIOD_ATTR);
     if ((assumed < 0) || (assumed > 65535)) {
         return fail(m, NULL, "%s %lld outside 0 .. 65535 ms", PERIOD_ATTR, (long long)assumed);
     }

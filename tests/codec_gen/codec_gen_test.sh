@@ -27,8 +27,9 @@
 #          the 20 status frames the ECU sends in 10 s carry it (none 65284);
 #   3. dbc2c refuses, with exit status 1 and a message naming the cause, a
 #      missing file, a DBC without a signal the firmware needs, a min that is
-#      not a whole raw count and a unit the firmware cannot convert; and
-#      exits 2 on a usage error.
+#      not a whole raw count, a unit the firmware cannot convert and an
+#      input the firmware watches without a period; and exits 2 on a usage
+#      error (no arguments, or no header argument).
 # Prints every figure it compares; exits 1 when one differs.
 
 set -u
