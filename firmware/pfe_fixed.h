@@ -75,6 +75,26 @@ static inline int64_t pfe_mul_q(int64_t a, int32_t b, uint32_t shift)
 }
 
 /*
+ * a * b / 2^32 rounded to nearest (halves up): exactly
+ * pfe_rshift_round((int64_t)a * b, 32U), for any a and b; the result lies
+ * within [-2^30, 2^30]. On a core with the DSP extension (the Cortex-M4:
+ * __ARM_FEATURE_DSP) one instruction, SMMULR (ARMv7-M Architecture
+ * Reference Manual: the most significant word of the product, rounded by
+ * adding 0x80000000 first); elsewhere the 64-bit product and its rounding. The
+ * simulation's step makes most of its products with it (pfe_sim.c).
+ */
+static inline int32_t pfe_mulhr_i32(int32_t a, int32_t b)
+{
+#if defined(__GNUC__) && defined(__ARM_FEATURE_DSP)
+    int32_t r;
+    __asm__("smmulr %0, %1, %2" : "=r"(r) : "r"(a), "r"(b));
+    return r;
+#else
+    return (int32_t)pfe_rshift_round((int64_t)a * b, 32U);
+#endif
+}
+
+/*
  * x as m * 2^shift with |m| < 2^31, for a coefficient to be multiplied 32 x
  * 32 -> 64 bits in a step: the smallest shift >= min_shift, m = x / 2^shift
  * rounded to nearest (|x| halves up, the sign kept), so m = x exactly when

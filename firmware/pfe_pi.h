@@ -68,8 +68,7 @@ static inline int32_t pfe_pi_step_in_range(pfe_pi_t *pi, int32_t error, uint32_t
 
     /* |kp_m| < 2^31 times |e| 2^shift <= 2^30: below 2^61, so kp e / 2^32
      * fits 32 bits; P clamped to +-2^27 there. */
-    const int32_t p = pfe_clamp_i32((int32_t)pfe_mul_q(pi->kp_m, e * pi->kp_scale, 32U),
-                                    -(1 << 27), 1 << 27);
+    const int32_t p = pfe_clamp_i32(pfe_mulhr_i32(pi->kp_m, e * pi->kp_scale), -(1 << 27), 1 << 27);
     /* ki * e / 2^24 is U/s * 2^8, below 2^30 with the rate's error limit;
      * times dt (<= 2^20), below 2^50, over 2^20 is U * 2^4 (< 2^30),
      * clamped to +-2^29 so that I + step fits 32 bits. */

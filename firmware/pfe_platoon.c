@@ -191,5 +191,5 @@ int32_t pfe_platoon_accel_um_s2(const pfe_platoon_t *pl, int32_t net_force_q2)
      * |f| * scale <= M * 80 * 2 * 10^6 / M < 2^28: one 32 x 32 -> 64 bit
      * multiply, below 2^59; f / M * 10^6 * 4 over 2^2 is the acceleration */
     const int32_t f_scaled = f * pl->inv_mass_scale;
-    return (int32_t)pfe_rshift_round((int64_t)f_scaled * pl->inv_mass_m, 32U);
+    return pfe_mulhr_i32(f_scaled, pl->inv_mass_m);
 }

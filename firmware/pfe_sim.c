@@ -9,6 +9,8 @@
 /* 10^9 = 2^9 * 5^9 */
 #define POW5_9 1953125ULL
 #define FUEL_FORCE_MAX_Q2 ((int32_t)1 << 27) /* 33.5 MN: above any platoon's traction */
+/* Steps whose times (each at most 2^20 in s * 2^16) a 32-bit sum holds. */
+#define PFE_SIM_BLOCK_STEPS 4095U
 
 /* The road sample under position_mm (the last one beyond the road's end). */
 static uint32_t sample_at(const pfe_road_t *road, uint32_t position_mm)
@@ -33,10 +35,9 @@ static inline int64_t air_q2(int64_t air_q32, uint64_t v2)
  * (checked at init) times weight_scale <= 2^10 is below 2^29, times
  * |weight_m| < 2^31 below 2^60: one 32 x 32 -> 64 bit multiply, its rounded
  * high word. */
-static inline int64_t grade_q2(const pfe_sim_t *sim, int32_t grade_ppm)
+static inline int32_t grade_q2(const pfe_sim_t *sim, int32_t grade_ppm)
 {
-    const int32_t g = grade_ppm * sim->weight_scale;
-    return pfe_rshift_round((int64_t)sim->weight_m * g, 32U);
+    return pfe_mulhr_i32(sim->weight_m, grade_ppm * sim->weight_scale);
 }
 
 /* Fa + Fr + Fg of the object model at speed v and grade (eq. 4.6 to 4.10),
@@ -47,8 +48,26 @@ static inline int64_t grade_q2(const pfe_sim_t *sim, int32_t grade_ppm)
  * fits 32 bits in N * 2^2. */
 static int32_t resistance_q2(const pfe_sim_t *sim, uint64_t v2, int32_t grade_ppm)
 {
-    return (int32_t)(air_q2(sim->platoon->object.air_q32, v2) + sim->roll_q2 +
-                     grade_q2(sim, grade_ppm));
+    return (int32_t)(air_q2(sim->platoon->object.air_q32, v2) + sim->roll_q2) +
+           grade_q2(sim, grade_ppm);
+}
+
+/* pfe_platoon_force_max_v2_n() for the simulation's speeds, v >= the stall
+ * speed (1000 mm/s): min(Pmax / v, traction) - c v^2, never below
+ * -brake_max, in N. Pmax [W] * 1000 / v is at most Pmax there, so its two
+ * parts (the quotient's thousands and the remainder's share) and their sum
+ * fit 32 bits; the traction is held at most INT32_MAX (traction_cap_n) and
+ * the brake negated (brake_min_n) at init. The same result. */
+static inline int32_t force_max_n(const pfe_sim_t *sim, uint32_t v, uint64_t v2)
+{
+    const uint32_t q = sim->power_max_w / v;
+    const uint32_t r = sim->power_max_w - (q * v);
+    const uint32_t power_n = (q * 1000U) + ((r * 1000U) / v);
+    const uint32_t cap = (uint32_t)sim->traction_cap_n;
+    const int32_t wheel = (int32_t)((power_n < cap) ? power_n : cap);
+    const uint64_t drag = (v2 * sim->formation_air_q32) + 2147483648U;
+    const int32_t f = wheel - (int32_t)(uint32_t)(drag >> 32);
+    return (f < sim->brake_min_n) ? sim->brake_min_n : f;
 }
 
 /* Per-kg gain [1/s * 1000] to N per um/s * 2^32: M * k * 2^32 / 10^9. */
@@ -127,6 +146,10 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     sim->fuel_step_nl = 0U;
     const pfe_vehicle_t *obj = &platoon->object;
     sim->formation_air_q32 = platoon->formation_air_q32;
+    sim->power_max_w = obj->power_max_w;
+    sim->traction_cap_n = (obj->traction_max_n > (uint32_t)INT32_MAX) ? INT32_MAX
+                                                                      : (int32_t)obj->traction_max_n;
+    sim->brake_min_n = -(int32_t)obj->brake_max_n;
     /* cr M g: roll_q32 < 2^31 times g < 2^24, over 2^30. */
     sim->roll_q2 = pfe_rshift_round(obj->roll_q32 * (int64_t)platoon->gravity_um_s2, 30U);
     /* M g [N] * 2^36 / 10^6 = mass_q32 [kg * 2^32 / 10^6] * g [um/s^2] * 2^4
@@ -177,21 +200,23 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     return PFE_OK;
 }
 
-/* One step (pfe_sim_step()), inline in pfe_sim_run()'s loop. */
+/* One step (pfe_sim_step()), inline in pfe_sim_run()'s loop. The step's
+ * time and, with_fuel, its pulling time are added to *time_q16 and
+ * *pull_q16, 32-bit sums of at most PFE_SIM_BLOCK_STEPS steps (each dt at
+ * most 2^20) that pfe_sim_run() adds to the state's 64-bit ones. */
 static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_sim_sums_t *sums,
-                                  bool with_sums, bool with_bound)
+                                  uint32_t *time_q16, uint32_t *pull_q16, bool with_fuel,
+                                  bool with_bound)
 {
     if (sim->position_mm >= sim->end_mm) {
         return PFE_SIM_DONE;
     }
-    const int32_t v_mm_s = pfe_sim_speed_mm_s(sim);
-    if (v_mm_s < PFE_SIM_STALL_MM_S) {
+    /* The speed is never negative (clamped below): an unsigned rounding. */
+    const uint32_t v = ((uint32_t)sim->speed_um_s + 500U) / 1000U;
+    if (v < (uint32_t)PFE_SIM_STALL_MM_S) {
         return PFE_ESTALL;
     }
-    const pfe_platoon_t *pl = sim->platoon;
-    const pfe_vehicle_t *obj = &pl->object;
     const uint32_t left = sim->end_mm - sim->position_mm;
-    const uint32_t v = (uint32_t)v_mm_s;
     uint32_t ds = (left < sim->step_mm) ? left : sim->step_mm;
     if (v < sim->stiff_below_mm_s) {
         ds = stable_step_mm(sim, v, ds);
@@ -203,36 +228,35 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
     const int32_t grade = road->grade_ppm[sample];
     const uint64_t v2u = (uint64_t)v * v;
     const int32_t resist_q2 = resistance_q2(sim, v2u, grade);
-    /* Limits in order and within range (pfe_platoon_force_max_v2_n()), dt <= 2^20 (above). */
-    const int32_t f_max = pfe_platoon_force_max_v2_n(obj, sim->formation_air_q32, v_mm_s, v2u);
+    const int32_t f_max = force_max_n(sim, v, v2u);
     const int32_t force = pfe_pi_step_in_range(&sim->pi, sim->set_speed_um_s - sim->speed_um_s,
-                                               dt_q16, -(int32_t)obj->brake_max_n, f_max);
+                                               dt_q16, sim->brake_min_n, f_max);
     /* |force| <= 2^26 (PFE_PI_OUT_MAX), |resistance| < 2^27 in N * 2^2: fits. */
-    const int32_t accel = pfe_platoon_accel_um_s2(pl, (force * 4) - resist_q2);
-    /* |a| <= 2^24.3, dt <= 2^20: dv below 2^28.3, and the sum with a speed
-     * <= 7e7 um/s stays inside int32. */
-    const int32_t dt_i = (int32_t)dt_q16;
-    const int32_t dv = (int32_t)pfe_rshift_round((int64_t)accel * dt_i, 16U);
+    const int32_t accel = pfe_platoon_accel_um_s2(sim->platoon, (force * 4) - resist_q2);
+    /* dv = a dt / 2^16, rounded: |a| <= PFE_ACCEL_MAX_UM_S2 (2e7) times 2^6
+     * and dt <= 2^20 times 2^10 both fit int32, so it is their product's
+     * rounded high word; below 2^28.3, and the sum with a speed <= 7e7 um/s
+     * stays inside int32. */
+    const int32_t dv = pfe_mulhr_i32(accel * 64, (int32_t)(dt_q16 << 10));
     sim->speed_um_s = pfe_clamp_i32(sim->speed_um_s + dv, 0, PFE_SPEED_MAX_MM_S * 1000);
 
-    /* eq. 3.7 / 4.14 in N * 2^2: (M + Mj) a is within M * 20 m/s^2 * 2
-     * (|a| * mass_fuel_scale <= 2^30.3 times |mass_fuel_m| < 2^31: one
-     * 32 x 32 -> 64 bit multiply), the sum below 2^30. */
-    const int32_t a_scaled = accel * sim->mass_fuel_scale;
-    const int32_t fuel_force_q2 =
-        (int32_t)pfe_rshift_round((int64_t)sim->mass_fuel_m * a_scaled, 32U) + resist_q2;
-    uint64_t step_work = 0U;
-    uint32_t step_pull = 0U;
-    if (fuel_force_q2 > 0) {
-        /* The work Fw' ds, Fw' [N * 2^2] <= 2^27 times ds < 2^14: one
-         * 32 x 32 -> 64 bit multiply; the fuel is made from the sums
-         * (sim_fuel_nl()). */
-        const uint32_t f = (fuel_force_q2 < FUEL_FORCE_MAX_Q2) ? (uint32_t)fuel_force_q2
-                                                                : (uint32_t)FUEL_FORCE_MAX_Q2;
-        step_work = (uint64_t)f * ds;
-        step_pull = dt_q16;
+    if (with_fuel) {
+        /* eq. 3.7 / 4.14 in N * 2^2: (M + Mj) a is within M * 20 m/s^2 * 2
+         * (|a| * mass_fuel_scale <= 2^30.3 times |mass_fuel_m| < 2^31: the
+         * rounded high word of a 32 x 32 bit product), the sum below 2^30. */
+        const int32_t fuel_force_q2 =
+            pfe_mulhr_i32(sim->mass_fuel_m, accel * sim->mass_fuel_scale) + resist_q2;
+        if (fuel_force_q2 > 0) {
+            /* The work Fw' ds, Fw' [N * 2^2] <= 2^27 times ds < 2^14: one
+             * 32 x 32 -> 64 bit multiply-accumulate; the fuel is made from
+             * the sums (sim_fuel_nl()). */
+            const uint32_t f = (fuel_force_q2 < FUEL_FORCE_MAX_Q2) ? (uint32_t)fuel_force_q2
+                                                                    : (uint32_t)FUEL_FORCE_MAX_Q2;
+            sim->work_q2_mm += (uint64_t)f * ds;
+            *pull_q16 += dt_q16;
+        }
     }
-    if (with_sums && with_bound && (force > 0)) {
+    if (with_bound && (force > 0)) {
         /* The bound's three sums (pfe_sim.h): v^2 / 2 < 2^32 times ds, the
          * bound's grade (|g| <= 25000) times ds: two multiply-accumulates. */
         const uint32_t v2_half = (uint32_t)(v2u >> 1);
@@ -240,11 +264,8 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
         sums->bound_ds_mm += ds;
         sums->bound_grade_ds += (int64_t)sums->bound_grade_20ppm[sample] * (int32_t)ds;
     }
-    sim->work_q2_mm += step_work;
-    sim->pull_time_q16 += step_pull;
-    sim->time_q16 += dt_q16;
+    *time_q16 += dt_q16;
     sim->position_mm += ds;
-    sim->steps++;
     sim->grade_ppm = grade;
     sim->wheel_force_n = force;
     sim->accel_um_s2 = accel;
@@ -305,30 +326,46 @@ static void finish_run(pfe_sim_t *sim, uint64_t pull_before_q16, pfe_sim_sums_t 
     }
 }
 
+/* The steps of one kind of run, up to max_steps (UINT32_MAX: to the end),
+ * in blocks of at most PFE_SIM_BLOCK_STEPS whose time sums fit 32 bits. */
+static PFE_ALWAYS_INLINE int run_steps(pfe_sim_t *s, const pfe_road_t *rd, uint32_t max_steps,
+                                       pfe_sim_sums_t *t, bool with_fuel, bool with_bound)
+{
+    int r = PFE_SIM_RUNNING;
+    uint32_t left = max_steps;
+    while ((left != 0U) && (r == PFE_SIM_RUNNING)) {
+        const uint32_t block = (left < PFE_SIM_BLOCK_STEPS) ? left : PFE_SIM_BLOCK_STEPS;
+        uint32_t time_q16 = 0U;
+        uint32_t pull_q16 = 0U;
+        uint32_t k = 0U;
+        while ((k < block) && (r == PFE_SIM_RUNNING)) {
+            r = step(s, rd, t, &time_q16, &pull_q16, with_fuel, with_bound);
+            k += (r == PFE_SIM_RUNNING) ? 1U : 0U;
+        }
+        s->steps += k;
+        s->time_q16 += time_q16;
+        s->pull_time_q16 += pull_q16;
+        left -= (max_steps != UINT32_MAX) ? k : 0U;
+    }
+    return r;
+}
+
 int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps, pfe_sim_sums_t *sums)
 {
     /* The state in locals the compiler can keep in registers across steps
      * (through the pointers it would have to assume aliasing); one loop per
-     * kind of run, so that a run without sums carries none of their cost. */
+     * kind of run, so that a run carries the cost of what it sums alone. */
     pfe_sim_t s = *sim;
     const pfe_road_t rd = *road;
-    int r = PFE_SIM_RUNNING;
+    int r;
     if (sums == NULL) {
-        uint32_t k = max_steps;
-        while ((k != 0U) && (r == PFE_SIM_RUNNING)) {
-            r = step(&s, &rd, NULL, false, false);
-            k -= (k != UINT32_MAX) ? 1U : 0U; /* UINT32_MAX: to the end */
-        }
+        r = run_steps(&s, &rd, max_steps, NULL, true, false);
     } else {
         pfe_sim_sums_t t = *sums;
         if (t.bound_grade_20ppm == NULL) {
-            for (uint32_t k = 0U; (k < max_steps) && (r == PFE_SIM_RUNNING); k++) {
-                r = step(&s, &rd, &t, true, false);
-            }
+            r = run_steps(&s, &rd, max_steps, &t, true, false);
         } else {
-            for (uint32_t k = 0U; (k < max_steps) && (r == PFE_SIM_RUNNING); k++) {
-                r = step(&s, &rd, &t, true, true);
-            }
+            r = run_steps(&s, &rd, max_steps, &t, false, true);
         }
         *sums = t;
     }

@@ -84,6 +84,9 @@ typedef struct {
     uint32_t ctrl_tau_ms;    /* the controller's time constant, min(1 / kp, 1 / sqrt(ki)) */
     uint32_t stiff_below_mm_s; /* below this speed a step may be shortened (see the top) */
     uint32_t formation_air_q32; /* the platoon's formation drag (pfe_platoon.h), held here */
+    uint32_t power_max_w;    /* the object's Pmax, held here */
+    int32_t traction_cap_n;  /* the object's traction, at most INT32_MAX */
+    int32_t brake_min_n;     /* -Fb_max of the object: the controller's lower limit */
     /* State after the last step. */
     int32_t speed_um_s;
     uint32_t position_mm;
