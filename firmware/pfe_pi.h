@@ -12,7 +12,7 @@
  *   a wound-up integrator behind.
  *
  * Scaling: kp_q32 = kp [U per E] * 2^32, ki_q32 = ki [U per E per s] * 2^32,
- * both with magnitude below 2^35; error clamped to +-2^25; dt_q16 = dt [s]
+ * both with magnitude below 2^35; error clamped to [-2^25, 2^25 - 1]; dt_q16 = dt [s]
  * * 2^16, at most 2^20 (16 s); output limits clamped to +-PFE_PI_OUT_MAX.
  * Then every product stays below 2^61 and the integrator, held as U * 2^4
  * (1/16 of an output unit), in 32 bits: this runs in every simulation step
@@ -37,7 +37,7 @@
 
 #include "pfe_fixed.h"
 
-#define PFE_PI_ERROR_MAX ((int32_t)1 << 25)
+#define PFE_PI_ERROR_MAX (((int32_t)1 << 25) - 1)
 #define PFE_PI_DT_MAX_Q16 ((uint32_t)1 << 20)
 #define PFE_PI_GAIN_MAX_Q32 ((int64_t)1 << 35)
 #define PFE_PI_OUT_MAX ((int32_t)1 << 26)
@@ -64,18 +64,23 @@ void pfe_pi_init(pfe_pi_t *pi, int64_t kp_q32, int64_t ki_q32, int32_t initial_o
 static inline int32_t pfe_pi_step_in_range(pfe_pi_t *pi, int32_t error, uint32_t dt, int32_t lo,
                                            int32_t hi)
 {
-    const int32_t e = pfe_clamp_i32(error, -PFE_PI_ERROR_MAX, PFE_PI_ERROR_MAX);
+    /* Each fixed clamp is to [-2^k, 2^k - 1], a single saturating
+     * instruction on the Cortex-M4 (SSAT). */
+    const int32_t e = pfe_clamp_i32(error, -PFE_PI_ERROR_MAX - 1, PFE_PI_ERROR_MAX);
 
     /* |kp_m| < 2^31 times |e| 2^shift <= 2^30: below 2^61, so kp e / 2^32
-     * fits 32 bits; P clamped to +-2^27 there. */
-    const int32_t p = pfe_clamp_i32(pfe_mulhr_i32(pi->kp_m, e * pi->kp_scale), -(1 << 27), 1 << 27);
+     * (the product's rounded high word) fits 32 bits; P clamped to 2^27
+     * there. */
+    const int32_t p = pfe_clamp_i32(pfe_mulhr_i32(pi->kp_m, e * pi->kp_scale), -(1 << 27),
+                                    (1 << 27) - 1);
     /* ki * e / 2^24 is U/s * 2^8, below 2^30 with the rate's error limit;
-     * times dt (<= 2^20), below 2^50, over 2^20 is U * 2^4 (< 2^30),
-     * clamped to +-2^29 so that I + step fits 32 bits. */
+     * times dt (<= 2^20, a signed 32 x 32 -> 64 bit product), below 2^50,
+     * over 2^20 is U * 2^4 (< 2^30), clamped to 2^29 so that I + step fits
+     * 32 bits. */
     const int32_t e_rate = pfe_clamp_i32(e, -pi->rate_error_max, pi->rate_error_max);
     const int32_t rate_q8 = (int32_t)pfe_mul_q(pi->ki_m, e_rate * pi->ki_scale, 24U);
-    const int32_t step_q4 = pfe_clamp_i32((int32_t)pfe_mul_q(rate_q8, (int32_t)dt, 20U),
-                                          -(1 << 29), 1 << 29);
+    const int32_t step_q4 = pfe_clamp_i32(
+        (int32_t)pfe_rshift_round((int64_t)rate_q8 * (int32_t)dt, 20U), -(1 << 29), (1 << 29) - 1);
 
     /* |I| <= 2^30, |step| <= 2^29, |P| <= 2^27: every sum below 2^31. */
     const int32_t trial_q4 = pi->integral_q4 + step_q4;

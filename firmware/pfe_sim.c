@@ -22,13 +22,16 @@ static uint32_t sample_at(const pfe_road_t *road, uint32_t position_mm)
     return k;
 }
 
-/* Air drag in N * 2^2 (eq. 4.6): air_q32 [N per (mm/s)^2 * 2^32] below
- * 2^22 (a platoon's sum, as unsigned 32 bits) times v2 < 2^33, over 2^30,
- * rounded: one multiply and one multiply-accumulate, below 2^56. */
-static inline int64_t air_q2(int64_t air_q32, uint64_t v2)
+/* Air drag and rolling resistance in N * 2^2 (eq. 4.6, 4.8): air_q32 [N
+ * per (mm/s)^2 * 2^32] below 2^22 (a platoon's sum, as unsigned 32 bits)
+ * times v2 < 2^33, over 2^30, rounded, plus cr M g: held at init as
+ * air_x4_q32 = 4 air_q32 (< 2^24) and air_bias = cr M g [N * 2^2] * 2^32 +
+ * 2^31, so that the sum is the high word of one multiply-accumulate onto
+ * the bias and one multiply (v2's high word), below 2^57: exactly the
+ * rounded air drag plus the rolling part. */
+static inline int32_t air_roll_q2(const pfe_sim_t *sim, uint64_t v2)
 {
-    const uint64_t product = ((uint64_t)(uint32_t)air_q32 * v2) + ((uint64_t)1 << 29);
-    return (int64_t)(product >> 30);
+    return (int32_t)(uint32_t)((((uint64_t)sim->air_x4_q32 * v2) + sim->air_bias) >> 32);
 }
 
 /* Fg = M g grade in N * 2^2 (eq. 4.10, small angle): |grade| <= 5 * 10^5
@@ -48,8 +51,7 @@ static inline int32_t grade_q2(const pfe_sim_t *sim, int32_t grade_ppm)
  * fits 32 bits in N * 2^2. */
 static int32_t resistance_q2(const pfe_sim_t *sim, uint64_t v2, int32_t grade_ppm)
 {
-    return (int32_t)(air_q2(sim->platoon->object.air_q32, v2) + sim->roll_q2) +
-           grade_q2(sim, grade_ppm);
+    return air_roll_q2(sim, v2) + grade_q2(sim, grade_ppm);
 }
 
 /* pfe_platoon_force_max_v2_n() for the simulation's speeds, v >= the stall
@@ -152,6 +154,9 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     sim->brake_min_n = -(int32_t)obj->brake_max_n;
     /* cr M g: roll_q32 < 2^31 times g < 2^24, over 2^30. */
     sim->roll_q2 = pfe_rshift_round(obj->roll_q32 * (int64_t)platoon->gravity_um_s2, 30U);
+    /* roll_q2 < 2^25 (pfe_vehicle.c's bounds, 32 trucks): the bias below 2^57. */
+    sim->air_bias = ((uint64_t)sim->roll_q2 << 32) + 2147483648U;
+    sim->air_x4_q32 = (uint32_t)obj->air_q32 * 4U;
     /* M g [N] * 2^36 / 10^6 = mass_q32 [kg * 2^32 / 10^6] * g [um/s^2] * 2^4
      * / 10^6; mass_q32 * g < 2^57, times 2^4 below 2^61; the quotient below
      * 2^42 (3200 t), so its shift is 2 .. 12. */

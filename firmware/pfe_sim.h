@@ -72,6 +72,9 @@ typedef struct {
     /* Object-model resistance split for the step (eq. 4.8, 4.10): the
      * rolling part is constant, the grade part linear in the grade. */
     int64_t roll_q2;         /* cr M g, N * 2^2 */
+    uint64_t air_bias;       /* roll_q2 * 2^32 + 2^31: air drag and rolling summed with one
+                              * multiply-accumulate (pfe_sim.c) */
+    uint32_t air_x4_q32;     /* the object's air_q32 * 4, below 2^24 */
     int32_t weight_m;        /* M g in N * 2^36 / 10^6 (below 2^42) = weight_m * 2^s, s >= 2
                               * (pfe_mantissa_i32()): Fg [N * 2^2] = weight_m *
                               * (grade_ppm * weight_scale) / 2^32 */
