@@ -22,12 +22,15 @@
  * m * 2^shift with shift 0 .. 5 (pfe_mantissa_i32(): m = gain exactly below
  * 2^31, else rounded to 2^-31 of the gain), and the error is
  * multiplied by 2^shift (|e| 2^shift <= 2^30), so that each product is one
- * 32 x 32 -> 64 bit multiply. The integral's rate ki e is held below 2^54
- * (|rate| U/s * 2^8 below 2^30): its error is clamped to 2^54 / |ki| when
- * that is below PFE_PI_ERROR_MAX (in the simulation's newtons, a rate of
- * 4.2 MN/s: with the largest gain, 2^35, past 0.52 m/s of error; the
+ * 32 x 32 -> 64 bit multiply. The integral's rate ki e is held at most
+ * 2^53 (|rate| U/s * 2^8 at most 2^29, and clamped to [-2^29, 2^29 - 1]
+ * so that its product with dt is the rounded high word of 32-bit
+ * operands): its error is clamped to 2^53 / |ki| when that is below
+ * PFE_PI_ERROR_MAX (rate_limited; in the simulation's newtons, a rate of
+ * 2.1 MN/s: with the largest gain, 2^35, past 0.26 m/s of error; the
  * default cruise calibration's gain, 20 milli / s^2 per kg, stays below the
- * limit for any platoon up to 3200 t).
+ * limit for any platoon up to 1600 t, and up to 3200 t for any error below
+ * 32 m/s).
  */
 #ifndef PFE_PI_H
 #define PFE_PI_H
@@ -47,7 +50,8 @@ typedef struct {
     int32_t kp_scale;       /* 2^0 .. 2^5 */
     int32_t ki_m;           /* ki_q32 = ki_m * ki_scale */
     int32_t ki_scale;
-    int32_t rate_error_max; /* the integral's error limit: |ki| e below 2^54 */
+    int32_t rate_error_max; /* the integral's error limit: |ki| e at most 2^53 */
+    bool rate_limited;      /* rate_error_max below PFE_PI_ERROR_MAX: the limit applies */
     int32_t integral_q4;    /* I, output units * 2^4 */
 } pfe_pi_t;
 
@@ -73,14 +77,15 @@ static inline int32_t pfe_pi_step_in_range(pfe_pi_t *pi, int32_t error, uint32_t
      * there. */
     const int32_t p = pfe_clamp_i32(pfe_mulhr_i32(pi->kp_m, e * pi->kp_scale), -(1 << 27),
                                     (1 << 27) - 1);
-    /* ki * e / 2^24 is U/s * 2^8, below 2^30 with the rate's error limit;
-     * times dt (<= 2^20, a signed 32 x 32 -> 64 bit product), below 2^50,
-     * over 2^20 is U * 2^4 (< 2^30), clamped to 2^29 so that I + step fits
-     * 32 bits. */
-    const int32_t e_rate = pfe_clamp_i32(e, -pi->rate_error_max, pi->rate_error_max);
-    const int32_t rate_q8 = (int32_t)pfe_mul_q(pi->ki_m, e_rate * pi->ki_scale, 24U);
-    const int32_t step_q4 = pfe_clamp_i32(
-        (int32_t)pfe_rshift_round((int64_t)rate_q8 * (int32_t)dt, 20U), -(1 << 29), (1 << 29) - 1);
+    /* ki * e / 2^24 is U/s * 2^8, at most 2^29 with the rate's error
+     * limit (which only a large gain needs: rate_limited); times dt over
+     * 2^20 is U * 2^4: rate * 4 < 2^31 and dt * 2^10 <= 2^30, so it is their
+     * product's rounded high word, below 2^29 (I + step fits 32 bits). */
+    const int32_t e_rate = pi->rate_limited ? pfe_clamp_i32(e, -pi->rate_error_max, pi->rate_error_max)
+                                            : e;
+    const int32_t rate_q8 = pfe_clamp_i32((int32_t)pfe_mul_q(pi->ki_m, e_rate * pi->ki_scale, 24U),
+                                          -(1 << 29), (1 << 29) - 1);
+    const int32_t step_q4 = pfe_mulhr_i32(rate_q8 * 4, (int32_t)(dt << 10));
 
     /* |I| <= 2^30, |step| <= 2^29, |P| <= 2^27: every sum below 2^31. */
     const int32_t trial_q4 = pi->integral_q4 + step_q4;

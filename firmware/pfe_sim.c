@@ -12,16 +12,6 @@
 /* Steps whose times (each at most 2^20 in s * 2^16) a 32-bit sum holds. */
 #define PFE_SIM_BLOCK_STEPS 4095U
 
-/* The road sample under position_mm (the last one beyond the road's end). */
-static uint32_t sample_at(const pfe_road_t *road, uint32_t position_mm)
-{
-    uint32_t k = position_mm / road->spacing_mm;
-    if (k >= road->n_samples) {
-        k = road->n_samples - 1U;
-    }
-    return k;
-}
-
 /* Air drag and rolling resistance in N * 2^2 (eq. 4.6, 4.8): air_q32 [N
  * per (mm/s)^2 * 2^32] below 2^22 (a platoon's sum, as unsigned 32 bits)
  * times v2 < 2^33, over 2^30, rounded, plus cr M g: held at init as
@@ -227,9 +217,12 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
         ds = stable_step_mm(sim, v, ds);
     }
     /* ds <= 16000 mm: ds * 2^16 < 2^30; v >= 1000 mm/s: dt <= 16 s (2^20 in Q16). */
-    const uint32_t dt_q16 = ((ds << 16) + (v / 2U)) / v;
+    const uint32_t dt_q16 = ((ds << 16) + (v >> 1)) / v;
 
-    const uint32_t sample = sample_at(road, sim->position_mm + (ds / 2U));
+    /* The sample of the step's midpoint: 1 <= ds <= end - position, so the
+     * midpoint lies before the road's end (n_samples * spacing_mm) and its
+     * sample is one of the road's. */
+    const uint32_t sample = (sim->position_mm + (ds / 2U)) / road->spacing_mm;
     const int32_t grade = road->grade_ppm[sample];
     const uint64_t v2u = (uint64_t)v * v;
     const int32_t resist_q2 = resistance_q2(sim, v2u, grade);
@@ -251,13 +244,13 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
          * rounded high word of a 32 x 32 bit product), the sum below 2^30. */
         const int32_t fuel_force_q2 =
             pfe_mulhr_i32(sim->mass_fuel_m, accel * sim->mass_fuel_scale) + resist_q2;
-        if (fuel_force_q2 > 0) {
-            /* The work Fw' ds, Fw' [N * 2^2] <= 2^27 times ds < 2^14: one
-             * 32 x 32 -> 64 bit multiply-accumulate; the fuel is made from
-             * the sums (sim_fuel_nl()). */
-            const uint32_t f = (fuel_force_q2 < FUEL_FORCE_MAX_Q2) ? (uint32_t)fuel_force_q2
-                                                                    : (uint32_t)FUEL_FORCE_MAX_Q2;
-            sim->work_q2_mm += (uint64_t)f * ds;
+        /* The work Fw' ds of a pulling step, Fw' [N * 2^2] held within
+         * [0, 2^27 - 1] (one USAT: 33.5 MN, above any platoon's traction)
+         * times ds < 2^14: one 32 x 32 -> 64 bit multiply-accumulate; the
+         * fuel is made from the sums (sim_fuel_nl()). */
+        const uint32_t f = (uint32_t)pfe_clamp_i32(fuel_force_q2, 0, FUEL_FORCE_MAX_Q2 - 1);
+        sim->work_q2_mm += (uint64_t)f * ds;
+        if (f != 0U) {
             *pull_q16 += dt_q16;
         }
     }
@@ -342,11 +335,14 @@ static PFE_ALWAYS_INLINE int run_steps(pfe_sim_t *s, const pfe_road_t *rd, uint3
         const uint32_t block = (left < PFE_SIM_BLOCK_STEPS) ? left : PFE_SIM_BLOCK_STEPS;
         uint32_t time_q16 = 0U;
         uint32_t pull_q16 = 0U;
-        uint32_t k = 0U;
-        while ((k < block) && (r == PFE_SIM_RUNNING)) {
+        uint32_t k = block;
+        do {
             r = step(s, rd, t, &time_q16, &pull_q16, with_fuel, with_bound);
-            k += (r == PFE_SIM_RUNNING) ? 1U : 0U;
-        }
+            k--;
+        } while ((k != 0U) && (r == PFE_SIM_RUNNING));
+        /* the last call took no step unless it ran */
+        k += (r == PFE_SIM_RUNNING) ? 0U : 1U;
+        k = block - k;
         s->steps += k;
         s->time_q16 += time_q16;
         s->pull_time_q16 += pull_q16;
