@@ -195,13 +195,19 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     return PFE_OK;
 }
 
-/* One step (pfe_sim_step()), inline in pfe_sim_run()'s loop. The step's
- * time and, with_fuel, its pulling time are added to *time_q16 and
- * *pull_q16, 32-bit sums of at most PFE_SIM_BLOCK_STEPS steps (each dt at
- * most 2^20) that pfe_sim_run() adds to the state's 64-bit ones. */
+/* The 32-bit sums of a block of at most PFE_SIM_BLOCK_STEPS steps, which
+ * pfe_sim_run() adds to the 64-bit ones at the block's end: each step's dt
+ * is at most 2^20 and its ds below 2^14. */
+typedef struct {
+    uint32_t time_q16;  /* sum dt: pfe_sim_t.time_q16 */
+    uint32_t pull_q16;  /* sum dt of the pulling steps: pfe_sim_t.pull_time_q16 */
+    uint32_t bound_ds;  /* sum ds of the bound's steps: pfe_sim_sums_t.bound_ds_mm */
+} block_sums_t;
+
+/* One step (pfe_sim_step()), inline in pfe_sim_run()'s loop: its time,
+ * pulling time and bound distance go to the block's sums *b. */
 static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_sim_sums_t *sums,
-                                  uint32_t *time_q16, uint32_t *pull_q16, bool with_fuel,
-                                  bool with_bound)
+                                  block_sums_t *b, bool with_fuel, bool with_bound)
 {
     if (sim->position_mm >= sim->end_mm) {
         return PFE_SIM_DONE;
@@ -251,7 +257,7 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
         const uint32_t f = (uint32_t)pfe_clamp_i32(fuel_force_q2, 0, FUEL_FORCE_MAX_Q2 - 1);
         sim->work_q2_mm += (uint64_t)f * ds;
         if (f != 0U) {
-            *pull_q16 += dt_q16;
+            b->pull_q16 += dt_q16;
         }
     }
     if (with_bound && (force > 0)) {
@@ -259,10 +265,10 @@ static PFE_ALWAYS_INLINE int step(pfe_sim_t *sim, const pfe_road_t *road, pfe_si
          * bound's grade (|g| <= 25000) times ds: two multiply-accumulates. */
         const uint32_t v2_half = (uint32_t)(v2u >> 1);
         sums->bound_v2_ds += (uint64_t)v2_half * ds;
-        sums->bound_ds_mm += ds;
+        b->bound_ds += ds;
         sums->bound_grade_ds += (int64_t)sums->bound_grade_20ppm[sample] * (int32_t)ds;
     }
-    *time_q16 += dt_q16;
+    b->time_q16 += dt_q16;
     sim->position_mm += ds;
     sim->grade_ppm = grade;
     sim->wheel_force_n = force;
@@ -333,19 +339,21 @@ static PFE_ALWAYS_INLINE int run_steps(pfe_sim_t *s, const pfe_road_t *rd, uint3
     uint32_t left = max_steps;
     while ((left != 0U) && (r == PFE_SIM_RUNNING)) {
         const uint32_t block = (left < PFE_SIM_BLOCK_STEPS) ? left : PFE_SIM_BLOCK_STEPS;
-        uint32_t time_q16 = 0U;
-        uint32_t pull_q16 = 0U;
+        block_sums_t b = {0U, 0U, 0U};
         uint32_t k = block;
         do {
-            r = step(s, rd, t, &time_q16, &pull_q16, with_fuel, with_bound);
+            r = step(s, rd, t, &b, with_fuel, with_bound);
             k--;
         } while ((k != 0U) && (r == PFE_SIM_RUNNING));
         /* the last call took no step unless it ran */
         k += (r == PFE_SIM_RUNNING) ? 0U : 1U;
         k = block - k;
         s->steps += k;
-        s->time_q16 += time_q16;
-        s->pull_time_q16 += pull_q16;
+        s->time_q16 += b.time_q16;
+        s->pull_time_q16 += b.pull_q16;
+        if (with_bound) {
+            t->bound_ds_mm += b.bound_ds;
+        }
         left -= (max_steps != UINT32_MAX) ? k : 0U;
     }
     return r;

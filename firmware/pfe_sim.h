@@ -124,15 +124,18 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
 /*
  * One distance step (the last one is shortened to end exactly at the end of
  * the road, a slow one as the top says). Returns PFE_SIM_RUNNING,
- * PFE_SIM_DONE, or PFE_ESTALL. Cost: a fixed number of operations (two
+ * PFE_SIM_DONE, or PFE_ESTALL. Cost: a fixed number of operations (four
  * 32-bit divisions; below stiff_below_mm_s two more and a 64-bit one), no
- * loop.
+ * loop: about 160 Cortex-M4 instructions inside pfe_sim_run() (docs/bench.md).
  */
 int pfe_sim_step(pfe_sim_t *sim, const pfe_road_t *road);
 
 /*
  * Sums over a run besides its fuel (pfe_sim_run()), for the prediction's
- * bounds (pfe_predict.h):
+ * bounds (pfe_predict.h). A run with a bound sums the bound alone: its own
+ * fuel is not summed (fuel_nl, work_q2_mm, pull_time_q16 and aux_nl stay
+ * as they were, fuel_step_nl is 0); its trajectory (speed, position, time,
+ * the controller) is the same as without sums.
  *   aux_nl    the auxiliaries' part of fuel_nl (the steps' time summed, its
  *             fuel rounded once: pfe_sim_t.pull_time_q16);
  *   bound_*   when bound_grade_20ppm is not NULL, the work of a fuel bound

@@ -42,6 +42,41 @@ static void test_rounding_shift_is_to_nearest_for_both_signs(void **state)
     assert_int_equal(pfe_udiv_round_u64(9U, 0U), 0U);
 }
 
+static void test_rounded_high_word(void **state)
+{
+    (void)state;
+    /* pfe_mulhr_i32(): SMMULR on the Cortex-M4, the 64-bit product on the
+     * host; both give a * b / 2^32 rounded, halves up. */
+    assert_int_equal(pfe_mulhr_i32(1 << 16, 1 << 15), 1);        /* 0.5 -> 1 */
+    assert_int_equal(pfe_mulhr_i32(-(1 << 16), 1 << 15), 0);     /* -0.5 -> 0 */
+    assert_int_equal(pfe_mulhr_i32(0x40000000, 3), 1);           /* 0.75 -> 1 */
+    assert_int_equal(pfe_mulhr_i32(-0x40000000, 3), -1);         /* -0.75 -> -1 */
+    assert_int_equal(pfe_mulhr_i32(0x40000000, 1), 0);           /* 0.25 -> 0 */
+    assert_int_equal(pfe_mulhr_i32(INT32_MIN, INT32_MIN), 1073741824);  /* 2^62 / 2^32 */
+    assert_int_equal(pfe_mulhr_i32(INT32_MIN, INT32_MAX), -1073741823); /* -2^30 + 0.5 -> -2^30 + 1 */
+    assert_int_equal(pfe_mulhr_i32(INT32_MAX, INT32_MAX), 1073741823);  /* 2^30 - 1 + 2^-32 */
+    assert_int_equal(pfe_mulhr_i32(123456789, -987654321), -28389653); /* -28389652.98 */
+    /* The same as the rounded shift of the product over a spread of both
+     * signs and magnitudes (on the Cortex-M4: the instruction against C). */
+    uint32_t x = 2463534242U;
+    for (int k = 0; k < 5000; k++) {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        const int32_t a = (int32_t)x >> (k % 31);
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        const int32_t b = (int32_t)x >> ((k / 31) % 31);
+        const int64_t expect = pfe_rshift_round((int64_t)a * b, 32U);
+        if (pfe_mulhr_i32(a, b) != (int32_t)expect) {
+            print_error("pfe_mulhr_i32(%ld, %ld) = %ld, expected %lld\n", (long)a, (long)b,
+                        (long)pfe_mulhr_i32(a, b), (long long)expect);
+            fail();
+        }
+    }
+}
+
 static void test_wide_products_and_mantissas(void **state)
 {
     (void)state;
@@ -142,6 +177,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_saturation_limits),
         cmocka_unit_test(test_rounding_shift_is_to_nearest_for_both_signs),
+        cmocka_unit_test(test_rounded_high_word),
         cmocka_unit_test(test_wide_products_and_mantissas),
         cmocka_unit_test(test_drag_reduction_table),
         cmocka_unit_test(test_calibration_checks),

@@ -84,15 +84,27 @@ static void test_pi_integral_rate_limit(void **state)
     (void)state;
     pfe_pi_t pi;
     /* The largest gain, 2^35 (8 U per E per s): the rate's error is held
-     * at 2^54 / 2^35 = 2^19, so one second of an error of 2^25 adds
-     * 2^35 * 2^19 / 2^32 = 2^22 to I (not 2^25, the step's own limit of
-     * 2^29 / 16). */
+     * at 2^53 / 2^35 = 2^18, so one second of an error of 2^25 adds
+     * 2^35 * 2^18 / 2^32 = 2^21 to I (not 2^24, the gain's own rate); the
+     * rate, 2^29 U/s * 2^8 exactly, is held at 2^29 - 1: I gains
+     * (2^29 - 1) / 2^8 = 2097151.996, 2097152 rounded. */
     pfe_pi_init(&pi, 0, PFE_PI_GAIN_MAX_Q32, 0);
+    assert_true(pi.rate_limited);
+    assert_int_equal(pi.rate_error_max, (int32_t)1 << 18);
     assert_int_equal(pfe_pi_step(&pi, PFE_PI_ERROR_MAX, ONE_S_Q16, -PFE_PI_OUT_MAX, PFE_PI_OUT_MAX),
-                     4194304);
-    /* Below the limit the rate is the gain's: 2^35 * 2^18 / 2^32 = 2^21 more. */
-    assert_int_equal(pfe_pi_step(&pi, (int32_t)1 << 18, ONE_S_Q16, -PFE_PI_OUT_MAX, PFE_PI_OUT_MAX),
-                     4194304 + 2097152);
+                     2097152);
+    /* Below the limit the rate is the gain's: 2^35 * 2^17 / 2^32 = 2^20 more. */
+    assert_int_equal(pfe_pi_step(&pi, (int32_t)1 << 17, ONE_S_Q16, -PFE_PI_OUT_MAX, PFE_PI_OUT_MAX),
+                     2097152 + 1048576);
+    /* The largest error the largest platoon's default gain integrates
+     * unlimited: 3200 t at 20 milli / s^2 per kg is 2^28.03 * 2^32 / 2^32,
+     * limited only past 2^53 / gain, 32.6 m/s; 1600 t never. */
+    pfe_pi_init(&pi, 0, (int64_t)pfe_udiv_round_u64((3200000ULL * 20U) << 32, 1000000000U), 0);
+    assert_true(pi.rate_limited);
+    ASSERT_GT(pi.rate_error_max, 32000000);
+    pfe_pi_init(&pi, 0, (int64_t)pfe_udiv_round_u64((1600000ULL * 20U) << 32, 1000000000U), 0);
+    assert_false(pi.rate_limited);
+    assert_int_equal(pi.rate_error_max, PFE_PI_ERROR_MAX);
     /* A gain above 2^31, 2^32 + 2^30 (1.25): its mantissa keeps it exactly. */
     pfe_pi_init(&pi, ONE_Q32 + (ONE_Q32 / 4), 0, 0);
     assert_int_equal(pfe_pi_step(&pi, 1000, ONE_S_Q16, -100000, 100000), 1250);
@@ -122,6 +134,107 @@ static void test_pi_in_range_is_the_checked_step(void **state)
         assert_int_equal(pfe_pi_step_in_range(&a, err, dt, lo, hi), pfe_pi_step(&b, err, dt, lo, hi));
         assert_int_equal(a.integral_q4, b.integral_q4);
     }
+}
+
+/* A rolling road of ROAD_SAMPLES 12 m samples: +-3 % in a 2.4 km period,
+ * enough to make the controller pull, brake and coast. */
+static pfe_road_t rolling_road(void)
+{
+    static const int32_t quarter[5] = {0, 15000, 30000, 15000, 0};
+    for (uint32_t k = 0U; k < ROAD_SAMPLES; k++) {
+        const uint32_t phase = (k / 10U) % 20U; /* 20 parts of 120 m */
+        const int32_t g = quarter[(phase % 10U < 5U) ? (phase % 5U) : (4U - (phase % 5U))];
+        road_buf[k] = (phase < 10U) ? g : -g;
+    }
+    const pfe_road_t r = {road_buf, ROAD_SAMPLES, 12000U};
+    return r;
+}
+
+static void test_runs_of_many_blocks_are_the_steps(void **state)
+{
+    (void)state;
+    /* 12 km in 1 m steps, 12000 of them: pfe_sim_run() sums the steps'
+     * times in 32-bit blocks of 4095 steps; to the end in one call, or in
+     * calls of 5000 steps, it gives what 12000 calls of pfe_sim_step()
+     * give, step count, time, fuel and speed alike. */
+    const pfe_platoon_t pl = platoon_of(3U, &pfe_default_drag);
+    const pfe_road_t road = rolling_road();
+    pfe_sim_t a;
+    pfe_sim_t b;
+    pfe_sim_t c;
+    assert_int_equal(pfe_sim_init(&a, &pl, &pfe_default_cruise, &road, 25000, 24000, 1000U), PFE_OK);
+    b = a;
+    c = a;
+    assert_int_equal(pfe_sim_run(&a, &road, UINT32_MAX, NULL), PFE_SIM_DONE);
+    int r = PFE_SIM_RUNNING;
+    while (r == PFE_SIM_RUNNING) {
+        r = pfe_sim_step(&b, &road);
+    }
+    assert_int_equal(r, PFE_SIM_DONE);
+    pfe_sim_sums_t sums;
+    memset(&sums, 0, sizeof sums);
+    assert_int_equal(pfe_sim_run(&c, &road, 5000U, &sums), PFE_SIM_RUNNING);
+    assert_int_equal(c.steps, 5000U);
+    assert_int_equal(pfe_sim_run(&c, &road, 5000U, &sums), PFE_SIM_RUNNING);
+    assert_int_equal(pfe_sim_run(&c, &road, 5000U, &sums), PFE_SIM_DONE);
+    assert_int_equal(a.steps, 12000U);
+    assert_int_equal(b.steps, 12000U);
+    assert_int_equal(c.steps, 12000U);
+    assert_int_equal(a.position_mm, 12000000U);
+    assert_int_equal(a.time_q16, b.time_q16);
+    assert_int_equal(a.time_q16, c.time_q16);
+    assert_int_equal(a.pull_time_q16, b.pull_time_q16);
+    assert_int_equal(a.fuel_nl, b.fuel_nl);
+    assert_int_equal(a.fuel_nl, c.fuel_nl);
+    assert_int_equal(a.speed_um_s, b.speed_um_s);
+    /* about 25 m/s: 480 s, summed over three blocks */
+    ASSERT_GT(a.time_q16, (uint64_t)470 << 16);
+    ASSERT_LT(a.time_q16, (uint64_t)500 << 16);
+    ASSERT_LT(a.pull_time_q16, a.time_q16);
+    ASSERT_GT(a.pull_time_q16, 0U);
+}
+
+static void test_a_bound_run_sums_the_bound_alone(void **state)
+{
+    (void)state;
+    /* A run with a bound follows the same trajectory as one without, but
+     * sums the bound's work, not its own fuel (the prediction reads only
+     * the bound from it: pfe_predict.c). */
+    const pfe_platoon_t pl = platoon_of(5U, &pfe_default_drag);
+    const pfe_road_t road = rolling_road();
+    static int16_t grade_20ppm[ROAD_SAMPLES];
+    for (uint32_t k = 0U; k < ROAD_SAMPLES; k++) {
+        grade_20ppm[k] = (int16_t)(road_buf[k] / 20);
+    }
+    pfe_sim_t nominal;
+    pfe_sim_t bound;
+    assert_int_equal(pfe_sim_init(&nominal, &pl, &pfe_default_cruise, &road, 25000, 25000, 12000U), PFE_OK);
+    bound = nominal;
+    pfe_sim_sums_t ns;
+    pfe_sim_sums_t bs;
+    memset(&ns, 0, sizeof ns);
+    memset(&bs, 0, sizeof bs);
+    bs.bound_grade_20ppm = grade_20ppm;
+    bs.bound_air_q32 = pl.object.air_q32;
+    bs.bound_fuel_q20 = pl.object.fuel_q20;
+    assert_int_equal(pfe_sim_run(&nominal, &road, UINT32_MAX, &ns), PFE_SIM_DONE);
+    assert_int_equal(pfe_sim_run(&bound, &road, UINT32_MAX, &bs), PFE_SIM_DONE);
+    assert_int_equal(bound.steps, nominal.steps);
+    assert_int_equal(bound.time_q16, nominal.time_q16);
+    assert_int_equal(bound.speed_um_s, nominal.speed_um_s);
+    assert_int_equal(bound.wheel_force_n, nominal.wheel_force_n);
+    assert_int_equal(bound.fuel_nl, 0U);
+    assert_int_equal(bs.aux_nl, 0U);
+    ASSERT_GT(nominal.fuel_nl, 0U);
+    ASSERT_GT(ns.aux_nl, 0U);
+    assert_int_equal(ns.bound_nl, 0);
+    /* The bound of the platoon's own drag, its own grade, over its pulling
+     * steps: within the work the run's fuel left out (the kinetic energy
+     * that fuel_nl books with Mj, the fuel cut's steps) and the auxiliaries,
+     * 10 % on this road. */
+    const int64_t without_aux = (int64_t)(nominal.fuel_nl - ns.aux_nl);
+    ASSERT_GT(bs.bound_nl, without_aux - (without_aux / 10));
+    ASSERT_LT(bs.bound_nl, without_aux + (without_aux / 10));
 }
 
 static void test_flat_road_needs_129_kw(void **state)
@@ -336,6 +449,8 @@ int main(void)
         cmocka_unit_test(test_pi_saturates_without_windup),
         cmocka_unit_test(test_pi_integral_rate_limit),
         cmocka_unit_test(test_pi_in_range_is_the_checked_step),
+        cmocka_unit_test(test_runs_of_many_blocks_are_the_steps),
+        cmocka_unit_test(test_a_bound_run_sums_the_bound_alone),
         cmocka_unit_test(test_flat_road_needs_129_kw),
         cmocka_unit_test(test_two_percent_upgrade_settles_at_73_7_kmh),
         cmocka_unit_test(test_platoon_climbs_at_its_lead_trucks_pace),
