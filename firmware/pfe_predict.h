@@ -32,7 +32,7 @@
  * The first two prepare the preview, O(n) for any window (n + w positions
  * a pass, w the window's half-width in samples): about 58,000 instructions
  * on the Cortex-M4 for 1000 samples and 5 trucks (tests/bench/m4_bench.c,
- * predict_first_n5 less predict_whole_n5), against about 775,000 for the
+ * predict_first_n5 less predict_whole_n5), against about 518,000 for the
  * three runs. A later prediction over the same preview (the caller says so
  * with its serial number) for the same window starts at NOMINAL, from the
  * sample the vehicle has reached; another platoon length prepares it anew.

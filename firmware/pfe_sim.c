@@ -332,7 +332,7 @@ static void finish_run(pfe_sim_t *sim, uint64_t pull_before_q16, pfe_sim_sums_t 
 
 /* The steps of one kind of run, up to max_steps (UINT32_MAX: to the end),
  * in blocks of at most PFE_SIM_BLOCK_STEPS whose time sums fit 32 bits. */
-static PFE_ALWAYS_INLINE int run_steps(pfe_sim_t *s, const pfe_road_t *rd, uint32_t max_steps,
+static PFE_ALWAYS_INLINE int run_blocks(pfe_sim_t *s, const pfe_road_t *rd, uint32_t max_steps,
                                        pfe_sim_sums_t *t, bool with_fuel, bool with_bound)
 {
     int r = PFE_SIM_RUNNING;
@@ -368,13 +368,13 @@ int pfe_sim_run(pfe_sim_t *sim, const pfe_road_t *road, uint32_t max_steps, pfe_
     const pfe_road_t rd = *road;
     int r;
     if (sums == NULL) {
-        r = run_steps(&s, &rd, max_steps, NULL, true, false);
+        r = run_blocks(&s, &rd, max_steps, NULL, true, false);
     } else {
         pfe_sim_sums_t t = *sums;
         if (t.bound_grade_20ppm == NULL) {
-            r = run_steps(&s, &rd, max_steps, &t, true, false);
+            r = run_blocks(&s, &rd, max_steps, &t, true, false);
         } else {
-            r = run_steps(&s, &rd, max_steps, &t, false, true);
+            r = run_blocks(&s, &rd, max_steps, &t, false, true);
         }
         *sums = t;
     }
