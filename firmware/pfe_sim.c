@@ -187,9 +187,9 @@ int pfe_sim_init(pfe_sim_t *sim, const pfe_platoon_t *platoon, const pfe_cruise_
     }
     const uint64_t v2_init = (uint64_t)initial_speed_mm_s * (uint32_t)initial_speed_mm_s;
     const int32_t hold = (resistance_q2(sim, v2_init, road->grade_ppm[0]) + 2) / 4;
-    const int32_t f_max = pfe_platoon_force_max_v2_n(obj, sim->formation_air_q32, initial_speed_mm_s,
-                                                     v2_init);
-    sim->wheel_force_n = pfe_clamp_i32(hold, -(int32_t)obj->brake_max_n, f_max);
+    /* the initial speed is at least the stall speed (checked above) */
+    const int32_t f_max = force_max_n(sim, (uint32_t)initial_speed_mm_s, v2_init);
+    sim->wheel_force_n = pfe_clamp_i32(hold, sim->brake_min_n, f_max);
     pfe_pi_init(&sim->pi, gain_q32(platoon->mass_kg, cruise->kp_milli_per_s),
                 gain_q32(platoon->mass_kg, cruise->ki_milli_per_s2), sim->wheel_force_n);
     return PFE_OK;
