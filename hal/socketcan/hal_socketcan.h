@@ -23,7 +23,11 @@
  * clocks read at hal_can_receive, and never smaller than the handle's previous
  * timestamp: so a step of the wall clock (NTP, date) neither breaks the
  * ordering nor shifts the time base. It is comparable with
- * clock_gettime(CLOCK_MONOTONIC) of the same machine.
+ * clock_gettime(CLOCK_MONOTONIC) of the same machine. When no socket of the
+ * machine had asked for receive stamps before, Linux turns them on a moment
+ * after hal_socketcan_open (a deferred work item, net_enable_timestamp());
+ * frames that reach the socket before then are stamped when read, which on
+ * a busy machine can be some milliseconds after they arrived.
  *
  * Counters (hal_can_stats_t): rx_dropped is the socket's receive queue
  * overflow count (SO_RXQ_OVFL; the kernel reports it with the next frame that

@@ -159,26 +159,58 @@ static void test_filter_refuses_bits_outside_the_identifier(void **state)
     hal_socketcan_close(h);
 }
 
-/* The kernel's receive time lies between the clock before send and after
- * receive (1 ms allowed for moving it from CLOCK_REALTIME). */
+/* The kernel's receive time lies between the clock before send and the start
+ * of the read 20 ms later (1 ms allowed for moving it from CLOCK_REALTIME),
+ * and well before that read: stamped on arrival, not when read.
+ *
+ * Linux turns its receive stamping on for the first socket that asks for it
+ * through a deferred work item (net_enable_timestamp(), net/core/dev.c): a
+ * frame that reaches the socket before that work has run carries no stamp
+ * and recvmsg() stamps it when read. On a busy machine the work runs late
+ * (seen under make test-loaded: a frame stamped 0.14 ms before its read), so
+ * probes are sent, each read 20 ms later, until one is stamped on arrival,
+ * for up to 2 s; then the measured frame must be. A backend that used the
+ * time of the read would never get past the probes. */
+static uint32_t stamped_on_arrival(hal_can_t *tx, hal_can_t *rx, uint64_t *before_us,
+                                   uint64_t *sent_us, uint64_t *read_us, uint64_t *stamp_us)
+{
+    const pfe_can_frame_t f = frame(0x0CF01300UL | EFF, 8U, 0U);
+    const struct timespec pause = {0, 20000000L}; /* 20 ms */
+    *before_us = mono_us();
+    assert_int_equal(hal_can_send(tx, &f), 0);
+    *sent_us = mono_us();
+    (void)nanosleep(&pause, NULL);
+    *read_us = mono_us();
+    hal_can_rx_t r;
+    assert_int_equal(receive_wait(rx, &r), 0);
+    *stamp_us = r.timestamp_us;
+    return (r.timestamp_us + 10000U <= *read_us) ? 1U : 0U;
+}
+
 static void test_timestamp_is_kernel_time_on_the_monotonic_clock(void **state)
 {
     (void)state;
     hal_can_t *tx = open_ok(0U);
     hal_can_t *rx = open_ok(0U);
-    const pfe_can_frame_t f = frame(0x0CF01300UL | EFF, 8U, 0U);
-    const struct timespec pause = {0, 20000000L}; /* 20 ms */
-
-    const uint64_t before = mono_us();
-    assert_int_equal(hal_can_send(tx, &f), 0);
-    (void)nanosleep(&pause, NULL);
-    hal_can_rx_t r;
-    assert_int_equal(receive_wait(rx, &r), 0);
-    const uint64_t after = mono_us();
-    ASSERT_GE(r.timestamp_us + 1000U, before);
-    ASSERT_LE(r.timestamp_us, after);
-    /* Stamped on arrival, not when read 20 ms later. */
-    ASSERT_LE(r.timestamp_us + 15000U, after);
+    uint64_t before = 0U;
+    uint64_t sent = 0U;
+    uint64_t read_start = 0U;
+    uint64_t stamp = 0U;
+    uint32_t probes = 0U;
+    while ((stamped_on_arrival(tx, rx, &before, &sent, &read_start, &stamp) == 0U) &&
+           (probes < 100U)) {
+        probes++;
+    }
+    if (probes > 0U) {
+        printf("# kernel receive stamping on after %u probe(s) stamped at their read\n",
+               (unsigned)probes);
+    }
+    (void)stamped_on_arrival(tx, rx, &before, &sent, &read_start, &stamp);
+    printf("# sent %llu..%llu us, stamped %llu us, read from %llu us\n",
+           (unsigned long long)before, (unsigned long long)sent, (unsigned long long)stamp,
+           (unsigned long long)read_start);
+    ASSERT_GE(stamp + 1000U, before);
+    ASSERT_LE(stamp + 10000U, read_start);
     hal_socketcan_close(rx);
     hal_socketcan_close(tx);
 }
