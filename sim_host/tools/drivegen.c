@@ -53,6 +53,9 @@ static const char k_manual[] =
     "  CCVS1 every 100 ms: the speed (SPN 84, 1/256 km/h), from --source SA\n"
     "  (default 0); SSI every 10 ms: the pitch of the road under the platoon\n"
     "  (SPN 3318, 0.002 deg), from --source SA;\n"
+    "  --speed-phase-ms P     CCVS1 sent P ms after its period's start, 0 .. 99\n"
+    "                         (default 0), with the speed at that start: a\n"
+    "                         speed sender on a schedule of its own\n"
     "  --no-config            no PFE_PlatoonConfig (default: every 1000 ms, its\n"
     "                         DBC period: N, position P, gap D, the time gap D /\n"
     "                         set speed and the set speed)\n"
@@ -115,6 +118,7 @@ typedef struct {
     double speed_noise_kmh, pitch_noise_deg;
     int config, preview;
     unsigned long preview_period_ticks, preview_samples, preview_spacing_m;
+    unsigned long speed_phase_ms;
 } options_t;
 
 static void print_frame(FILE *out, uint64_t t_us, const char *ifname, const pfe_can_frame_t *f)
@@ -195,6 +199,8 @@ static int parse_args(int argc, char **argv, options_t *o)
         } else if (strcmp(a, "--preview-period-s") == 0) {
             bad = cli_parse_double(v, 0.5, 3600.0, &d);
             o->preview_period_ticks = (unsigned long)lround(d * 100.0);
+        } else if (strcmp(a, "--speed-phase-ms") == 0) {
+            bad = cli_parse_ul(v, 0U, 99U, &o->speed_phase_ms);
         } else if (strcmp(a, "--preview-samples") == 0) {
             bad = cli_parse_ul(v, 1U, PFE_PREVIEW_MAX_SAMPLES, &o->preview_samples);
         } else if (strcmp(a, "--preview-spacing-m") == 0) {
@@ -360,10 +366,19 @@ static int write_drive(const options_t *o, const road_ppm_t *road, const drive_t
         ((uint64_t)(1U + ((o->preview_samples + 2U) / 3U)) * PREVIEW_FRAME_GAP_US);
     const int32_t set_mm_s = drive_spn84_quantise_mm_s(o->set_kmh / 3.6);
     const uint32_t gap_mm = gap_mm_of(o);
+    /* CCVS1 waits here until its time (--speed-phase-ms); one at a time,
+     * since the phase is shorter than its period */
+    pfe_can_frame_t speed_frame;
+    bool speed_pending = false;
+    uint64_t speed_at_us = 0U;
     for (size_t k = 0U; k < drive->n_ticks; k++) {
         const drive_tick_t *t = &drive->ticks[k];
         const uint64_t t_us = (uint64_t)k * TICK_US;
         pfe_can_frame_t f;
+        if (speed_pending && (speed_at_us <= t_us)) {
+            print_frame(out, speed_at_us, o->ifname, &speed_frame);
+            speed_pending = false;
+        }
         if (t->speed_fresh) {
             int32_t speed_mm_s = t->speed_mm_s;
             if (o->speed_noise_kmh > 0.0) {
@@ -372,8 +387,12 @@ static int write_drive(const options_t *o, const road_ppm_t *road, const drive_t
                 speed_mm_s = drive_spn84_quantise_mm_s(kmh / 3.6);
             }
             const pfe_msg_ccvs1_t m = {{speed_mm_s, PFE_SIG_VALID}};
-            (void)pfe_codec_encode_ccvs1(&f, &m, (uint8_t)o->source);
-            print_frame(out, t_us, o->ifname, &f);
+            (void)pfe_codec_encode_ccvs1(&speed_frame, &m, (uint8_t)o->source);
+            speed_at_us = t_us + ((uint64_t)o->speed_phase_ms * 1000U);
+            speed_pending = speed_at_us > t_us;
+            if (!speed_pending) {
+                print_frame(out, t_us, o->ifname, &speed_frame);
+            }
         }
         double pitch_deg = atan(t->grade_ppm / 1e6) * 180.0 / PI;
         if (o->pitch_noise_deg > 0.0) {
@@ -404,7 +423,15 @@ static int write_drive(const options_t *o, const road_ppm_t *road, const drive_t
             (t_us + burst_us <= end_us)) {
             burst_start(&burst, o, road, t->position_m, t_us + PREVIEW_OFFSET_US);
         }
+        if (speed_pending && (speed_at_us < (t_us + TICK_US))) {
+            burst_emit(&burst, o, out, speed_at_us);
+            print_frame(out, speed_at_us, o->ifname, &speed_frame);
+            speed_pending = false;
+        }
         burst_emit(&burst, o, out, t_us + TICK_US);
+    }
+    if (speed_pending) {
+        print_frame(out, speed_at_us, o->ifname, &speed_frame);
     }
     return ferror(out) ? -1 : 0;
 }

@@ -131,6 +131,8 @@ number_cases platoon_sim --vehicles "$T/platoon_sim" --road "$FLAT" --
 
 file_cases drivegen "$T/drivegen" --road -- --out "$O/drive.log"
 number_cases drivegen --set-speed-kmh "$T/drivegen" --segment 100:0 --out "$O/drive.log" --
+number_cases drivegen --speed-phase-ms "$T/drivegen" --segment 100:0 --out "$O/drive.log" --
+check "drivegen --speed-phase-ms 100" 1 "$T/drivegen" --segment 100:0 --speed-phase-ms 100 --out "$O/drive.log"
 check "drivegen --segment 'x:y'" 1 "$T/drivegen" --segment x:y --out "$O/drive.log"
 check "drivegen --out directory" 1 "$T/drivegen" --segment 100:0 --out "$W/in/dir"
 
