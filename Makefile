@@ -49,7 +49,7 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(sort $(wildcard tests/unit/test_*.c)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
 .PHONY: all tools deps run test test-host test-codec-gen test-m4 firmware bench bench-figures test-bench-check help clean test-image \
-        test-selfcheck test-replay-m4 test-e2e test-bus-faults test-asserts
+        test-selfcheck test-replay-m4 test-judge-phase test-e2e test-bus-faults test-asserts
 .DEFAULT_GOAL := all
 
 all: tools
@@ -302,8 +302,12 @@ test-replay-m4: $(HOST)/pfe_ecu_replay $(HOST)/ecu_check $(HOST)/pfe_faults $(M4
 	sh tests/replay/host_vs_m4.sh $(BUILD)/replay $(HOST) $(M4_OUT)/pfe_ecu_mps2.elf \
 	    $(E2E_PAYLOAD)/drive.log $(BUILD)/logs/hilly.log
 
+## ecu_check against a module whose tick phase is not the reference's: every CCVS1 phase passes, a wrong truck fails
+test-judge-phase: $(HOST)/drivegen $(HOST)/pfe_ecu_replay $(HOST)/ecu_check
+	sh tests/replay/judge_phase.sh $(BUILD)/judge-phase $(HOST)
+
 ## every test: host (ASan, UBSan), Cortex-M4 under QEMU, images, vcan VM, fuzzing smoke, MISRA, coverage, stack
-test: test-host test-m4 test-selfcheck test-replay-m4 test-image test-m4-selftest test-vcan test-e2e \
+test: test-host test-m4 test-selfcheck test-replay-m4 test-judge-phase test-image test-m4-selftest test-vcan test-e2e \
       test-sensitivity test-run-host test-drive-logs test-record-vm test-replay test-replay-vcan \
       test-thesis test-hardening test-bus-faults test-fuzz-smoke test-bench-check test-truck-cal \
       test-foreign-trucks test-replay-calib test-stm32 test-road-import \
