@@ -56,24 +56,28 @@ static const char k_manual[] =
     "\n"
     "The warm-up is --warmup-s S seconds after the first input frame (default 5).\n";
 
-/* What a module tick right after an input frame would answer (bus_ref_peek),
- * for the last PEEKS input frames: the candidates beside the reference's own
- * ticks (k_manual). */
-#define PEEKS 32U
+/* What a module tick right after each input frame would answer
+ * (bus_ref_peek), one per input frame of the capture, in time order: the
+ * candidates beside the reference's own ticks (k_manual). Room for every
+ * record, so that no busy stretch of bus pushes a candidate out of the
+ * window. */
 #define WINDOW_US ((uint64_t)BUS_REF_HISTORY * BUS_REF_TICK_US)
 
 typedef struct {
-    uint64_t t_us[PEEKS];
-    double own_l_s[PEEKS];
-    size_t n; /* taken so far; the newest at (n - 1) % PEEKS */
+    uint64_t t_us;
+    double own_l_s;
+} peek_t;
+
+typedef struct {
+    peek_t *at; /* owned, room for the capture's records */
+    size_t n;
 } peeks_t;
 
 static void peek_after_input(peeks_t *p, const bus_ref_t *ref, uint64_t t_us)
 {
-    double own = 0.0, platoon = 0.0;
-    (void)bus_ref_peek(ref, t_us, &own, &platoon);
-    p->t_us[p->n % PEEKS] = t_us;
-    p->own_l_s[p->n % PEEKS] = own;
+    double platoon = 0.0;
+    p->at[p->n].t_us = t_us;
+    (void)bus_ref_peek(ref, t_us, &p->at[p->n].own_l_s, &platoon);
     p->n++;
 }
 
@@ -88,14 +92,9 @@ static double nearest_own(const bus_ref_t *ref, const peeks_t *p, uint64_t t_us,
     if (fabs(own - got_l_s) < fabs(best - got_l_s)) {
         best = own;
     }
-    const size_t n = (p->n < PEEKS) ? p->n : PEEKS;
-    for (size_t k = 0U; k < n; k++) {
-        const size_t i = (p->n - 1U - k) % PEEKS;
-        if ((p->t_us[i] + WINDOW_US) < t_us) {
-            break; /* older than the window, and so are the rest */
-        }
-        if (fabs(p->own_l_s[i] - got_l_s) < fabs(best - got_l_s)) {
-            best = p->own_l_s[i];
+    for (size_t i = p->n; (i > 0U) && ((p->at[i - 1U].t_us + WINDOW_US) >= t_us); i--) {
+        if (fabs(p->at[i - 1U].own_l_s - got_l_s) < fabs(best - got_l_s)) {
+            best = p->at[i - 1U].own_l_s;
         }
     }
     return best;
@@ -137,7 +136,12 @@ int main(int argc, char **argv)
     }
     static bus_ref_t ref;
     (void)bus_ref_init(&ref, 1U, 0U, 10000U);
-    static peeks_t peeks;
+    peeks_t peeks = {calloc(cap.n + 1U, sizeof(peek_t)), 0U};
+    if (peeks.at == NULL) {
+        fprintf(stderr, "ecu_check: out of memory for %zu records\n", cap.n);
+        capture_free(&cap);
+        return 2;
+    }
     uint64_t t0 = 0U;
     bool started = false;
     size_t lfe1 = 0U, lfe1_na = 0U, hrlfc = 0U;
@@ -209,6 +213,7 @@ int main(int argc, char **argv)
     }
     const size_t n = cap.n;
     capture_free(&cap);
+    free(peeks.at);
     const size_t left_out = lfe1_disturbed + lfe1_na_disturbed;
     /* At least a quarter judged: under make test-loaded 45 % were left out
      * (254 of 566); a capture that leaves fewer than a quarter cannot say
