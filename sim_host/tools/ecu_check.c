@@ -16,8 +16,12 @@
 #include "ref/bus_ref.h"
 
 #define RELATIVE_FROM_L_S (5.0 / 3600.0) /* rates judged relatively from 5 L/h */
+#include "hal/replay/hal_replay_ecu.h"
 #include "lib/capture.h"
 #include "lib/disturb.h"
+
+#define TAIL_US ((uint64_t)HAL_REPLAY_ECU_TAIL_US)
+#define GAP_US ((uint64_t)HAL_REPLAY_ECU_GAP_US)
 #include "lib/cli_help.h"
 
 /* The manual: --help prints it whole, a usage error its first lines. */
@@ -54,7 +58,9 @@ static const char k_manual[] =
     "  the last HRLFC total fuel used within 0.5 % of the reference's.\n"
     "Prints the figures; exit status 0 pass, 1 fail, 2 bad input.\n"
     "\n"
-    "The warm-up is --warmup-s S seconds after the first input frame (default 5).\n";
+    "The warm-up is --warmup-s S seconds after the first input frame (default 5).\n"
+    "A silence of more than 11 s without any frame (a logger whose clock\n"
+    "jumped) is crossed in one jump, as pfe_ecu_replay crosses it, and counted.\n";
 
 /* What a module tick right after each input frame would answer
  * (bus_ref_peek), one per input frame of the capture, in time order: the
@@ -144,7 +150,7 @@ int main(int argc, char **argv)
     }
     uint64_t t0 = 0U;
     bool started = false;
-    size_t lfe1 = 0U, lfe1_na = 0U, hrlfc = 0U;
+    size_t lfe1 = 0U, lfe1_na = 0U, hrlfc = 0U, gaps_skipped = 0U;
     double worst = 0.0, last_total_l = -1.0, ref_at_total = 0.0;
     double worst_t_s = 0.0, worst_got = 0.0, worst_want = 0.0;
     size_t lfe1_low = 0U, lfe1_disturbed = 0U, lfe1_na_disturbed = 0U;
@@ -154,11 +160,19 @@ int main(int argc, char **argv)
         const capture_rec_t *c = &cap.recs[k];
         const uint8_t sa = pfe_j1939_source(c->f.id);
         const uint32_t pgn = pfe_j1939_pgn(c->f.id);
+        /* A silence of more than GAP_US is crossed in one jump, as
+         * pfe_ecu_replay crosses it: a logger whose clock jumps by years
+         * must not be ticked through. */
+        if (ref.started && (c->t_us > ref.next_tick_us + TAIL_US + GAP_US)) {
+            gaps_skipped++;
+            (void)bus_ref_skip_to(&ref, c->t_us - TAIL_US);
+        }
         if (sa != module_sa) {
             /* The reference's ticks start at the first input frame; after
              * that a frame at a tick's very time is that tick's, as the
-             * module takes every frame received by its deadline. */
-            bus_ref_advance(&ref, started ? (c->t_us - 1U) : c->t_us);
+             * module takes every frame received by its deadline (a capture
+             * may start at time 0: no tick is due before the first). */
+            bus_ref_advance(&ref, (started && (c->t_us > 0U)) ? (c->t_us - 1U) : c->t_us);
             if (!started) {
                 t0 = c->t_us;
                 started = true;
@@ -232,6 +246,10 @@ int main(int argc, char **argv)
            dist.overrun_events, DISTURB_LOST_TICKS_MIN, dist.output_events,
            enough ? "" : ": too disturbed a capture to judge");
     disturb_free(&dist);
+    if (gaps_skipped > 0U) {
+        printf("ecu_check: %zu silence(s) of over %.0f s crossed in one jump\n", gaps_skipped,
+               (double)(TAIL_US + GAP_US) / 1e6);
+    }
     const bool pass = (lfe1 > 0U) && enough && (lfe1_na == 0U) && (worst <= 0.01) &&
                       (hrlfc > 0U) && (total_err <= 0.005);
     if (worst > 0.01) {

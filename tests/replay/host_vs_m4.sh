@@ -9,7 +9,9 @@
 #   bad.log     a log with bad lines: both refuse it the same way (exit 1,
 #               same first bad line named)
 #   printed.txt the drive in candump's printed form (-t z, an error frame,
-#               -e's detail line): identical records, the drive's frames
+#               -e's detail line): identical records, the drive's frames,
+#               judged by ecu_check (times from 0); and the drive's record
+#               with a silence of 10^9 s: ecu_check ends
 #   truck.txt   a bench's printed log of a truck (two CCVS1 senders, no SSI,
 #               the engine's LFE1, 200 unread PGNs): identical records,
 #               own-truck rates sent
@@ -119,6 +121,28 @@ if cmp -s "$out/printed.frames" "$out/drive.frames" && grep -q ' not_classic 1 '
 else
     echo "replay printed: the record differs from the candump log's"
     cat "$out/printed.m4.summary"
+    fail=1
+fi
+# ecu_check on records it once ticked through for ever: one whose times
+# start at 0 (the printed drive's) is judged like the drive's; one with a
+# silence of 10^9 s in it (the drive, then the drive again with its clock
+# 10^9 s on: a logger whose clock jumped) ends, the silence crossed in one
+# jump, whatever its verdict.
+if timeout 60 "$tools/ecu_check" "$out/printed.m4.log" > "$out/printed.check.txt"; then
+    echo "replay printed: ecu_check on the record from time 0: $(tail -n 1 "$out/printed.check.txt")"
+else
+    echo "replay printed: ecu_check on the record from time 0 failed or did not end within 60 s:"
+    cat "$out/printed.check.txt"
+    fail=1
+fi
+{ cat "$out/drive.m4.log"; sed 's/^(17/(27/' "$out/drive.m4.log"; } > "$out/jump.log"
+timeout 60 "$tools/ecu_check" "$out/jump.log" > "$out/jump.check.txt"
+rc=$?
+if [ "$rc" -le 1 ] && grep -q '1 silence(s) of over 11 s crossed in one jump' "$out/jump.check.txt"; then
+    echo "replay jump: ecu_check ended (exit $rc), $(grep 'crossed' "$out/jump.check.txt" | cut -d' ' -f2-)"
+else
+    echo "replay jump: ecu_check exit $rc (124: did not end within 60 s):"
+    cat "$out/jump.check.txt"
     fail=1
 fi
 # A bench's log as recorded on a truck (tests/host/data/two_senders.txt
